@@ -1,0 +1,220 @@
+#include "geardyn/info_report.hpp"
+
+#include <cmath>
+#include <iomanip>
+#include <numeric>
+#include <sstream>
+
+#include "geardyn/common/units.hpp"
+#include "geardyn/models/gear/iso_stiffness.hpp"
+
+namespace geardyn::app {
+namespace {
+
+using nlohmann::json;
+
+const char* HandName(HelixHand hand) {
+  switch (hand) {
+    case HelixHand::kNone:
+      return "none";
+    case HelixHand::kRight:
+      return "right";
+    case HelixHand::kLeft:
+      return "left";
+  }
+  return "none";
+}
+
+json GearReport(const Scene& scene, const GearDef& def, const GearGeometry& g) {
+  return {{"name", def.name},
+          {"teeth", g.teeth},
+          {"internal", g.kind == GearKind::kInternal},
+          {"hand", HandName(g.hand)},
+          {"reference_radius", g.reference_radius},
+          {"base_radius", g.base_radius},
+          {"tip_radius", g.tip_radius},
+          {"root_radius", g.root_radius},
+          {"operating_pitch_radius", g.operating_pitch_radius},
+          {"virtual_teeth", g.virtual_teeth},
+          {"tip_thickness_normal", g.tip_thickness_normal},
+          {"profile_shift", g.profile_shift},
+          {"face_width", g.face_width},
+          {"mass", def.mass},
+          {"inertia", def.inertia},
+          {"speed_rpm", RadPerSecToRpm(scene.GearSpeed(def.name))}};
+}
+
+// ISO 6336-1's stiffness for F_t K_A / b < 100 N/mm is scaled with the line load; the load is
+// known when the operating-point body is one of the mesh's gears (K_A = 1, F_t at the reference
+// circle). Otherwise (a gear further down a train) the unscaled value is reported.
+std::optional<double> MeshLineLoad(const Scene& scene, const MeshDef& mesh) {
+  const GearPairGeometry& g = mesh.geometry;
+  const std::string& body = scene.operating_point.body;
+  double radius = 0.0;
+  if (body == mesh.pinion) radius = g.pinion.reference_radius;
+  if (body == mesh.gear) radius = g.gear.reference_radius;
+  if (radius <= 0.0) return std::nullopt;
+  return std::abs(scene.operating_point.torque) / radius / g.face_width;
+}
+
+json MeshReport(const Scene& scene, const MeshDef& mesh) {
+  const GearPairGeometry& g = mesh.geometry;
+  IsoStiffnessOptions iso_options;
+  iso_options.line_load = MeshLineLoad(scene, mesh);
+  const IsoMeshStiffness iso = CalcIsoMeshStiffness(g, iso_options);
+  const double f_mesh = scene.MeshFrequencyHz(mesh);
+  json r = {
+      {"name", mesh.name},
+      {"pinion", mesh.pinion},
+      {"gear", mesh.gear},
+      {"internal", g.internal},
+      {"normal_module", g.spec.normal_module},
+      {"transverse_module", g.transverse_module},
+      {"normal_pressure_angle_deg", RadToDeg(g.spec.normal_pressure_angle)},
+      {"transverse_pressure_angle_deg", RadToDeg(g.transverse_pressure_angle)},
+      {"operating_pressure_angle_deg", RadToDeg(g.operating_pressure_angle)},
+      {"helix_angle_deg", RadToDeg(g.spec.helix_angle)},
+      {"base_helix_angle_deg", RadToDeg(g.base_helix_angle)},
+      {"center_distance", g.center_distance},
+      {"reference_center_distance", g.reference_center_distance},
+      {"zero_backlash_center_distance", g.zero_backlash_center_distance},
+      {"backlash_circumferential", g.backlash_circumferential},
+      {"backlash_normal", g.backlash_normal},
+      {"base_pitch", g.transverse_base_pitch},
+      {"normal_base_pitch", g.normal_base_pitch},
+      {"line_of_action_length", g.line_of_action_length},
+      {"face_width", g.face_width},
+      {"transverse_contact_ratio", g.transverse_contact_ratio},
+      {"overlap_contact_ratio", g.overlap_contact_ratio},
+      {"total_contact_ratio", g.total_contact_ratio},
+      {"gear_ratio", g.gear_ratio},
+      {"base_radius_pinion", g.pinion.base_radius},
+      {"base_radius_gear", g.gear.base_radius},
+      {"tip_radius_pinion", g.pinion.tip_radius},
+      {"tip_radius_gear", g.gear.tip_radius},
+      {"mean_contact_line_length", g.mean_contact_line_length},
+      {"min_contact_line_length", g.min_contact_line_length},
+      {"max_contact_line_length", g.max_contact_line_length},
+      {"single_tooth_stiffness", iso.single_pair},
+      {"mesh_stiffness_alpha", iso.mesh_alpha},
+      {"mesh_stiffness_beta", iso.mesh_beta},
+      {"iso_line_load", iso_options.line_load ? json(*iso_options.line_load) : json(nullptr)},
+      {"iso_factors",
+       {{"C_M", iso.blank_factor}, {"C_R", iso.rim_factor}, {"C_B", iso.basic_rack_factor}}},
+      {"mesh_frequency_hz", f_mesh},
+      {"teeth_gcd", g.teeth_gcd},
+      {"hunting_period_meshes", g.hunting_period_meshes},
+      {"hunting_period_s",
+       f_mesh > 0.0 ? json(static_cast<double>(g.hunting_period_meshes) / f_mesh) : json(nullptr)},
+  };
+  return r;
+}
+
+json Units() {
+  return {{"lengths", "m"},
+          {"angles", "deg where the key ends in _deg, else rad"},
+          {"stiffness_per_face_width", "N/m per m of face width (N/m^2); 1 N/(mm um) = 1e9"},
+          {"line_load", "N/m"},
+          {"mass", "kg"},
+          {"inertia", "kg m^2"},
+          {"torque", "N m"},
+          {"frequency", "Hz"},
+          {"speed", "rpm"}};
+}
+
+}  // namespace
+
+nlohmann::json MakeInfoReport(const Scene& scene) {
+  json report;
+  report["scene"] = {{"source", scene.source}, {"title", scene.title}};
+  report["units"] = Units();
+  report["operating_point"] = {{"body", scene.operating_point.body},
+                               {"speed_rpm", RadPerSecToRpm(scene.operating_point.speed)},
+                               {"torque", scene.operating_point.torque}};
+  json gears = json::array();
+  json meshes = json::array();
+  for (const MeshDef& mesh : scene.meshes) {
+    meshes.push_back(MeshReport(scene, mesh));
+  }
+  for (const GearDef& def : scene.gears) {
+    // A gear's geometry comes from (any) mesh it takes part in; a gear in no mesh has none.
+    for (const MeshDef& mesh : scene.meshes) {
+      if (mesh.pinion == def.name || mesh.gear == def.name) {
+        gears.push_back(GearReport(
+            scene, def, mesh.pinion == def.name ? mesh.geometry.pinion : mesh.geometry.gear));
+        break;
+      }
+    }
+  }
+  report["gears"] = gears;
+  report["meshes"] = meshes;
+  report["counts"] = {{"gears", scene.gears.size()},
+                      {"meshes", scene.meshes.size()},
+                      {"bearings", scene.bearings.size()},
+                      {"loads", scene.loads.size()}};
+  return report;
+}
+
+namespace {
+
+void Line(std::ostringstream& out, const std::string& label, double value, const std::string& unit,
+          int precision = 6) {
+  out << "  " << std::left << std::setw(34) << label << std::right << std::setw(14)
+      << std::setprecision(precision) << value << " " << unit << "\n";
+}
+
+}  // namespace
+
+std::string FormatInfoText(const nlohmann::json& report) {
+  std::ostringstream out;
+  out << "scene: " << report["scene"]["source"].get<std::string>();
+  const std::string title = report["scene"]["title"].get<std::string>();
+  if (!title.empty()) out << " — " << title;
+  out << "\n";
+  const json& op = report["operating_point"];
+  out << "operating point: " << op["speed_rpm"].get<double>() << " rpm, "
+      << op["torque"].get<double>() << " N·m on " << op["body"].get<std::string>() << "\n";
+  for (const json& gear : report["gears"]) {
+    out << "\ngear " << gear["name"].get<std::string>() << " (" << gear["teeth"].get<int>()
+        << " teeth" << (gear["internal"].get<bool>() ? ", internal" : "") << ", hand "
+        << gear["hand"].get<std::string>() << ")\n";
+    Line(out, "reference radius", 1e3 * gear["reference_radius"].get<double>(), "mm");
+    Line(out, "base radius", 1e3 * gear["base_radius"].get<double>(), "mm");
+    Line(out, "tip radius", 1e3 * gear["tip_radius"].get<double>(), "mm");
+    Line(out, "root radius", 1e3 * gear["root_radius"].get<double>(), "mm");
+    Line(out, "operating pitch radius", 1e3 * gear["operating_pitch_radius"].get<double>(), "mm");
+    Line(out, "normal tooth thickness at tip", 1e3 * gear["tip_thickness_normal"].get<double>(),
+         "mm");
+    Line(out, "speed", gear["speed_rpm"].get<double>(), "rpm");
+  }
+  for (const json& mesh : report["meshes"]) {
+    out << "\nmesh " << mesh["name"].get<std::string>() << " (" << mesh["pinion"].get<std::string>()
+        << " → " << mesh["gear"].get<std::string>()
+        << (mesh["internal"].get<bool>() ? ", internal" : "") << ")\n";
+    Line(out, "centre distance", 1e3 * mesh["center_distance"].get<double>(), "mm");
+    Line(out, "operating pressure angle", mesh["operating_pressure_angle_deg"].get<double>(),
+         "deg");
+    Line(out, "base helix angle", mesh["base_helix_angle_deg"].get<double>(), "deg");
+    Line(out, "transverse base pitch", 1e3 * mesh["base_pitch"].get<double>(), "mm");
+    Line(out, "length of path of contact", 1e3 * mesh["line_of_action_length"].get<double>(), "mm");
+    Line(out, "transverse contact ratio", mesh["transverse_contact_ratio"].get<double>(), "");
+    Line(out, "overlap contact ratio", mesh["overlap_contact_ratio"].get<double>(), "");
+    Line(out, "total contact ratio", mesh["total_contact_ratio"].get<double>(), "");
+    Line(out, "normal backlash", 1e6 * mesh["backlash_normal"].get<double>(), "µm");
+    Line(out, "contact line length mean", 1e3 * mesh["mean_contact_line_length"].get<double>(),
+         "mm");
+    Line(out, "contact line length min", 1e3 * mesh["min_contact_line_length"].get<double>(), "mm");
+    Line(out, "contact line length max", 1e3 * mesh["max_contact_line_length"].get<double>(), "mm");
+    Line(out, "single-pair stiffness c'", 1e-9 * mesh["single_tooth_stiffness"].get<double>(),
+         "N/(mm·µm)");
+    Line(out, "mesh stiffness c_γα", 1e-9 * mesh["mesh_stiffness_alpha"].get<double>(),
+         "N/(mm·µm)");
+    Line(out, "mesh stiffness c_γβ", 1e-9 * mesh["mesh_stiffness_beta"].get<double>(), "N/(mm·µm)");
+    Line(out, "mesh frequency", mesh["mesh_frequency_hz"].get<double>(), "Hz");
+    out << "  " << std::left << std::setw(34) << "hunting period" << std::right << std::setw(14)
+        << mesh["hunting_period_meshes"].get<long>() << " mesh cycles\n";
+  }
+  return out.str();
+}
+
+}  // namespace geardyn::app

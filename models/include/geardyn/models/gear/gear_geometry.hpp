@@ -1,0 +1,138 @@
+/// @file
+/// @brief Involute gear-pair geometry (ISO 21771 / ISO 53 basic rack): inputs, derived
+/// quantities and the checks that reject pairs that cannot mesh.
+///
+/// All lengths in metres, angles in radians (degrees appear only at the input boundary, in the
+/// scene reader). "Pinion" and "gear" are the two members of a pair as the user named them (the
+/// pinion drives); ISO 6336's "pinion = the gear with fewer teeth" is applied internally where
+/// the standard needs it (see iso_stiffness.hpp).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+namespace geardyn {
+
+/// Hand of a helical gear. Spur gears have kNone.
+enum class HelixHand { kNone, kRight, kLeft };
+
+/// External (teeth outside) or internal (ring) gear.
+enum class GearKind { kExternal, kInternal };
+
+/// @brief Tooth and blank data of one gear of a pair (per-gear inputs).
+///
+/// Profile shift sign convention (ISO 21771): a positive x moves the basic rack profile away from
+/// the gear's material for external gears (thicker root, thicker tooth at the reference circle).
+/// For an internal gear a positive x likewise thickens its teeth: the whole profile moves by x m_n
+/// toward the gear axis, so r_a = r − m_n (h_aP* + x), r_f = r + m_n (h_fP* − x) and the
+/// transverse tooth thickness is s_t = m_t (π/2 + 2 x tan α_n) for both kinds (ISO 21771 with a
+/// signed tooth count). KHK / SDP-SI tables use the opposite sign for internal gears:
+/// x(ISO) = −x(KHK). See the implementation notes in gear_geometry.cpp.
+struct GearBlank {
+  int teeth = 0;                          ///< z [-] (positive also for internal gears)
+  GearKind kind = GearKind::kExternal;    ///< external or internal (ring) gear
+  double face_width = 0.0;                ///< b [m]
+  double profile_shift = 0.0;             ///< x [-]
+  double addendum_coefficient = 1.0;      ///< h_aP* of the basic rack [-] (tooth addendum / m_n)
+  double dedendum_coefficient = 1.25;     ///< h_fP* of the basic rack [-] (tooth dedendum / m_n)
+  double root_radius_coefficient = 0.38;  ///< ρ_fP* of the basic rack [-] (tool tip radius / m_n)
+  std::optional<double> tip_diameter;     ///< d_a [m]; if set, replaces the addendum rule
+  std::optional<double> web_thickness;    ///< b_s [m], web of a webbed blank (ISO 6336-1 C_R)
+  std::optional<double> rim_thickness;    ///< s_R [m], rim under the teeth (ISO 6336-1 C_R)
+};
+
+/// @brief Inputs of a parallel-axis involute gear pair.
+struct GearPairSpec {
+  double normal_module = 0.0;          ///< m_n [m]
+  double normal_pressure_angle = 0.0;  ///< α_n [rad]
+  double helix_angle = 0.0;            ///< β at the reference circle [rad], 0 ≤ β < 60°
+  /// The pinion's hand; an external mate has the other hand, a ring gear the same one.
+  HelixHand pinion_hand = HelixHand::kNone;
+  GearBlank pinion;                       ///< the driving member as the user named it
+  GearBlank gear;                         ///< the driven member (may be internal)
+  std::optional<double> center_distance;  ///< a_w [m]; if absent: zero-backlash centre distance
+  double min_tip_thickness_factor = 0.2;  ///< reject s_an < factor · m_n (tip too thin) [-]
+};
+
+/// @brief Derived geometry of one gear in its pair.
+struct GearGeometry {
+  int teeth = 0;  ///< z [-]
+  GearKind kind = GearKind::kExternal;
+  HelixHand hand = HelixHand::kNone;    ///< its own hand
+  double reference_radius = 0.0;        ///< r = z m_t / 2 [m]
+  double base_radius = 0.0;             ///< r_b = r cos α_t [m]
+  double tip_radius = 0.0;              ///< r_a [m] (for internal gears: the inner, tip circle)
+  double root_radius = 0.0;             ///< r_f [m]
+  double operating_pitch_radius = 0.0;  ///< r_w = r_b / cos α_wt [m]
+  double virtual_teeth = 0.0;           ///< z_n = z / (cos² β_b cos β) [-]
+  double tip_thickness_normal = 0.0;    ///< s_an, normal tooth thickness at the tip circle [m]
+  /// Radius where the mating tip meets this flank [m]: the innermost contact radius of an
+  /// external gear (start of active profile), the outermost one of an internal gear.
+  double start_of_active_profile_radius = 0.0;
+  double face_width = 0.0;     ///< b [m]
+  double profile_shift = 0.0;  ///< x [-]
+  // Added by the geometry implementation (not in the first contract):
+  double tooth_thickness_transverse = 0.0;  ///< s_t = m_t (π/2 + 2 x tan α_n) at r [m]
+  double tip_thickness_transverse = 0.0;    ///< s_at, transverse tooth thickness at r_a [m]
+};
+
+/// @brief Everything derived from a GearPairSpec. Angles in rad, lengths in m.
+struct GearPairGeometry {
+  GearPairSpec spec;  ///< the inputs, as given
+  GearGeometry pinion;
+  GearGeometry gear;
+  bool internal = false;                   ///< true when the gear is internal (a ring)
+  double transverse_module = 0.0;          ///< m_t = m_n / cos β [m]
+  double transverse_pressure_angle = 0.0;  ///< α_t [rad]
+  double base_helix_angle = 0.0;           ///< β_b [rad]
+  /// α_wt, transverse, at the operating centre distance [rad]
+  double operating_pressure_angle = 0.0;
+  double reference_center_distance = 0.0;      ///< a = (r_2 ± r_1) [m]
+  double center_distance = 0.0;                ///< a_w, the operating centre distance [m]
+  double zero_backlash_center_distance = 0.0;  ///< a_w at which the flanks close on both sides [m]
+  double backlash_circumferential = 0.0;       ///< j_wt on the operating pitch circle [m] (≥ 0)
+  double backlash_normal = 0.0;                ///< j_bn = j_wt cos α_wt cos β_b [m]
+  double transverse_base_pitch = 0.0;          ///< p_bt = π m_t cos α_t [m]
+  double normal_base_pitch = 0.0;              ///< p_bn = π m_n cos α_n [m]
+  double line_of_action_length = 0.0;          ///< g_α, length of path of contact (transverse) [m]
+  double face_width = 0.0;                     ///< common face width b = min(b_1, b_2) [m]
+  double transverse_contact_ratio = 0.0;       ///< ε_α = g_α / p_bt [-]
+  double overlap_contact_ratio = 0.0;          ///< ε_β = b sin β / (π m_n) [-]
+  double total_contact_ratio = 0.0;            ///< ε_γ = ε_α + ε_β [-]
+  double gear_ratio = 0.0;                     ///< u = z_gear / z_pinion [-]
+  // Tooth-count facts that θ* needs (spec 01 §1).
+  int teeth_gcd = 0;                        ///< gcd(z_1, z_2)
+  std::int64_t hunting_period_meshes = 0;   ///< mesh cycles per hunting period = lcm(z_1, z_2)
+  int pinion_turns_per_hunting_period = 0;  ///< n_2 = z_2 / gcd
+  int gear_turns_per_hunting_period = 0;    ///< n_1 = z_1 / gcd
+  // Total contact-line length in the zone of action (spec 01 §4.1): closed forms in ε_α, ε_β.
+  double mean_contact_line_length = 0.0;  ///< b ε_α / cos β_b [m]
+  double min_contact_line_length = 0.0;   ///< [m]
+  double max_contact_line_length = 0.0;   ///< [m]
+  // Added by the geometry implementation: where the path of contact lies on the line of action,
+  // as distances from T1, the point where the line of action touches the pinion's base circle
+  // (the pinion's roll lengths ρ). Contact runs from A to E; C is the pitch point.
+  double path_start_from_pinion_tangent = 0.0;   ///< T1A: mating tip meets the pinion flank [m]
+  double path_end_from_pinion_tangent = 0.0;     ///< T1E = sqrt(r_a1² − r_b1²): pinion tip [m]
+  double pitch_point_from_pinion_tangent = 0.0;  ///< T1C = r_b1 tan α_wt [m]
+};
+
+/// @brief Derives the pair geometry and rejects pairs that cannot mesh.
+///
+/// Without `center_distance` the pair runs at its zero-backlash centre distance. Rejections, in
+/// the order checked (the message starts with the name): bad scalars ("normal_module",
+/// "normal_pressure_angle" outside (0, 45°), "helix_angle" outside [0, 60°), "pinion_hand"
+/// inconsistent with β, "<member>.teeth" < 3, "<member>.face_width", ...), "pinion.kind"
+/// (internal pinion), "gear.teeth" (ring not larger than its pinion), "profile_shift_sum" (no
+/// zero-backlash distance), "center_distance" (not above r_b2 ± r_b1, or negative backlash),
+/// "<member>.root_radius", "<member>.tip_radius" (tip not above its base circle),
+/// "<member>.tip_interference" (a tip meets the mate below its base circle),
+/// "gear.trochoid_interference" (internal pairs), "<member>.undercut",
+/// "<member>.tip_thickness_normal", "<member>.tip_clearance" (a tip reaches the mating root
+/// circle), "transverse_contact_ratio" (< 1).
+/// @throws InvalidInput whose message starts with the quantity's name (e.g.
+///   "transverse_contact_ratio: 0.93 is below 1 (short by 0.07)") and says by how much the bound
+///   is missed.
+GearPairGeometry CalcGearPairGeometry(const GearPairSpec& spec);
+
+}  // namespace geardyn

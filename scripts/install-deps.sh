@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs the Debian packages geardyn needs, only those that are missing.
+set -euo pipefail
+packages=(build-essential cmake pkg-config libeigen3-dev libarpack2-dev libfftw3-dev libgsl-dev
+          libgtest-dev libgmock-dev libbenchmark-dev libtomlplusplus-dev libcli11-dev
+          nlohmann-json3-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "geardyn: installing missing Debian packages: ${missing[*]}"
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi

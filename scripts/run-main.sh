@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# The main job on a fresh machine: install dependencies, build geardyn (Release), and run it on the
+# built-in Kahraman–Blankenship rig, writing the results to ./results (or $GEARDYN_OUT).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+"$root/scripts/install-deps.sh"
+build="${GEARDYN_BUILD_DIR:-$root/build/release}"
+mkdir -p "$build"
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DGEARDYN_BUILD_TESTS=OFF \
+      -DGEARDYN_BUILD_EXAMPLES=OFF > "$build.configure.log" 2>&1 || { cat "$build.configure.log"; exit 1; }
+cmake --build "$build" --target geardyn_cli -j"$(nproc)"
+out="${GEARDYN_OUT:-$root/results}"
+"$build/apps/geardyn" info builtin:kahraman-blankenship-rig --out "$out" "$@"
+echo "geardyn: results written to $out"

@@ -1,0 +1,167 @@
+// The geardyn command run in-process: exit codes, JSON fields against independent closed forms,
+// --set, --out, and bad input that must fail with a clear message (never a crash).
+#include "geardyn/cli.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace geardyn::app {
+namespace {
+
+struct CliRun {
+  int code;
+  std::string out;
+  std::string err;
+};
+
+CliRun RunGeardyn(const std::vector<std::string>& args) {
+  std::ostringstream out, err;
+  const int code = RunCli(args, out, err);
+  return {code, out.str(), err.str()};
+}
+
+nlohmann::json RunJson(std::vector<std::string> args) {
+  args.push_back("--json");
+  const CliRun run = RunGeardyn(args);
+  EXPECT_EQ(run.code, kExitOk) << run.err;
+  return nlohmann::json::parse(run.out);
+}
+
+// Closed form for a standard external spur pair (x = 0, h_a* = 1, α = 20°, a = m z): ε_α from the
+// tip and base radii and the path of contact (ISO 21771 §5.4), written here independently.
+double SpurContactRatio(double m, int z1, int z2) {
+  const double alpha = 20.0 * M_PI / 180.0;
+  const double r1 = m * z1 / 2, r2 = m * z2 / 2;
+  const double rb1 = r1 * std::cos(alpha), rb2 = r2 * std::cos(alpha);
+  const double ra1 = r1 + m, ra2 = r2 + m;
+  const double g = std::sqrt(ra1 * ra1 - rb1 * rb1) + std::sqrt(ra2 * ra2 - rb2 * rb2) -
+                   (r1 + r2) * std::sin(alpha);
+  return g / (M_PI * m * std::cos(alpha));
+}
+
+TEST(CliTest, InfoOnKimRigMatchesClosedForms) {
+  const nlohmann::json r = RunJson({"info", "builtin:kahraman-blankenship-rig"});
+  ASSERT_EQ(r["meshes"].size(), 1u);
+  const nlohmann::json& m = r["meshes"][0];
+  constexpr double kLengthTol = 1e-9;  // metres; closed forms in double precision
+  // spec 03: base radius 70.477 mm (rounded to the µm in the paper).
+  EXPECT_NEAR(m["base_radius_pinion"].get<double>(), 0.070477, 5e-7);
+  EXPECT_NEAR(m["base_radius_gear"].get<double>(), 0.075 * std::cos(20.0 * M_PI / 180), kLengthTol);
+  EXPECT_NEAR(m["tip_radius_pinion"].get<double>(), 0.078, kLengthTol);
+  EXPECT_NEAR(m["tip_radius_gear"].get<double>(), 0.078, kLengthTol);
+  EXPECT_NEAR(m["operating_pressure_angle_deg"].get<double>(), 20.0, 1e-9);
+  EXPECT_NEAR(m["transverse_contact_ratio"].get<double>(), SpurContactRatio(0.003, 50, 50), 1e-9);
+  EXPECT_NEAR(m["overlap_contact_ratio"].get<double>(), 0.0, 1e-12);
+  EXPECT_NEAR(m["base_helix_angle_deg"].get<double>(), 0.0, 1e-12);
+  EXPECT_NEAR(m["base_pitch"].get<double>(), M_PI * 0.003 * std::cos(20.0 * M_PI / 180), 1e-12);
+  // Spur: one or two full-face lines in contact (20 mm face).
+  EXPECT_NEAR(m["min_contact_line_length"].get<double>(), 0.020, kLengthTol);
+  EXPECT_NEAR(m["max_contact_line_length"].get<double>(), 0.040, kLengthTol);
+  EXPECT_NEAR(m["mean_contact_line_length"].get<double>(),
+              0.020 * m["transverse_contact_ratio"].get<double>(), kLengthTol);
+  // f_mesh = z n / 60 with n the pinion speed in rpm.
+  EXPECT_NEAR(m["mesh_frequency_hz"].get<double>(),
+              50.0 * r["operating_point"]["speed_rpm"].get<double>() / 60.0, 1e-9);
+  // ISO 6336-1 method B: c_γα = c'(0.75 ε_α + 0.25), c_γβ = 0.85 c_γα; c' of steel gears is of
+  // the order of 1e10 N/m² (ISO 6336-1 §9: about 14 N/(mm·µm) before load scaling).
+  const double c1 = m["single_tooth_stiffness"].get<double>();
+  EXPECT_GT(c1, 5e9);
+  EXPECT_LT(c1, 2e10);
+  EXPECT_NEAR(m["mesh_stiffness_alpha"].get<double>(),
+              c1 * (0.75 * m["transverse_contact_ratio"].get<double>() + 0.25), 1e-6 * c1);
+  EXPECT_NEAR(m["mesh_stiffness_beta"].get<double>(),
+              0.85 * m["mesh_stiffness_alpha"].get<double>(), 1e-6 * c1);
+  EXPECT_EQ(m["hunting_period_meshes"].get<long>(), 50);  // lcm(50, 50)
+}
+
+TEST(CliTest, InfoOnHelicalPairHasOverlapAndBaseHelix) {
+  const nlohmann::json r = RunJson({"info", "builtin:helical-pair"});
+  ASSERT_GE(r["meshes"].size(), 1u);
+  const nlohmann::json& m = r["meshes"][0];
+  const double beta = m["helix_angle_deg"].get<double>() * M_PI / 180;
+  const double alpha_n = m["normal_pressure_angle_deg"].get<double>() * M_PI / 180;
+  ASSERT_GT(beta, 0.0);
+  // sin β_b = sin β cos α_n (ISO 21771).
+  EXPECT_NEAR(std::sin(m["base_helix_angle_deg"].get<double>() * M_PI / 180),
+              std::sin(beta) * std::cos(alpha_n), 1e-12);
+  // ε_β = b sin β / (π m_n).
+  EXPECT_NEAR(
+      m["overlap_contact_ratio"].get<double>(),
+      m["face_width"].get<double>() * std::sin(beta) / (M_PI * m["normal_module"].get<double>()),
+      1e-12);
+  EXPECT_NEAR(
+      m["total_contact_ratio"].get<double>(),
+      m["transverse_contact_ratio"].get<double>() + m["overlap_contact_ratio"].get<double>(),
+      1e-12);
+}
+
+TEST(CliTest, SetOverridesAValueWithoutEditingTheFile) {
+  const nlohmann::json base = RunJson({"info", "builtin:kahraman-blankenship-rig"});
+  const nlohmann::json r = RunJson(
+      {"info", "builtin:kahraman-blankenship-rig", "--set", "operating_point.speed_rpm=1200"});
+  EXPECT_NEAR(r["meshes"][0]["mesh_frequency_hz"].get<double>(), 1200.0 / 60.0 * 50.0, 1e-9);
+  EXPECT_NEAR(r["meshes"][0]["base_radius_pinion"].get<double>(),
+              base["meshes"][0]["base_radius_pinion"].get<double>(), 0.0);
+}
+
+TEST(CliTest, OutWritesJsonAndText) {
+  const std::filesystem::path dir =
+      std::filesystem::path(GEARDYN_BINARY_DIR) / "test-output" / "cli_info";
+  std::filesystem::remove_all(dir);
+  const CliRun run =
+      RunGeardyn({"info", "builtin:kahraman-blankenship-rig", "--out", dir.string()});
+  ASSERT_EQ(run.code, kExitOk) << run.err;
+  std::ifstream json_file(dir / "info.json");
+  ASSERT_TRUE(json_file.good());
+  const nlohmann::json r = nlohmann::json::parse(json_file);
+  EXPECT_NEAR(r["meshes"][0]["tip_radius_gear"].get<double>(), 0.078, 1e-9);
+  EXPECT_TRUE(std::filesystem::exists(dir / "info.txt"));
+  EXPECT_NE(run.out.find("transverse contact ratio"), std::string::npos);
+}
+
+TEST(CliTest, ScenesListsTheBuiltins) {
+  const CliRun run = RunGeardyn({"scenes"});
+  EXPECT_EQ(run.code, kExitOk);
+  EXPECT_NE(run.out.find("builtin:kahraman-blankenship-rig"), std::string::npos);
+  EXPECT_NE(run.out.find("builtin:helical-pair"), std::string::npos);
+}
+
+struct BadCommand {
+  std::vector<std::string> args;
+  std::string expected_in_err;
+};
+
+void PrintTo(const BadCommand& c, std::ostream* os) {
+  *os << "geardyn";
+  for (const std::string& a : c.args) *os << " " << a;
+}
+
+class CliBadInputTest : public ::testing::TestWithParam<BadCommand> {};
+
+TEST_P(CliBadInputTest, FailsWithExitCodeTwoAndAClearMessage) {
+  const CliRun run = RunGeardyn(GetParam().args);
+  EXPECT_EQ(run.code, kExitBadInput) << run.out;
+  EXPECT_NE(run.err.find(GetParam().expected_in_err), std::string::npos) << run.err;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Commands, CliBadInputTest,
+    ::testing::Values(
+        BadCommand{{}, "subcommand"}, BadCommand{{"frobnicate"}, "frobnicate"},
+        BadCommand{{"info"}, "scene"},
+        BadCommand{{"info", "/nonexistent/scene.toml"}, "/nonexistent/scene.toml"},
+        BadCommand{{"info", "builtin:no-such-scene"}, "builtin:no-such-scene"},
+        BadCommand{{"info", "builtin:kahraman-blankenship-rig", "--set", "gear.pinion.teeth=-5"},
+                   "teeth"},
+        BadCommand{{"info", "builtin:kahraman-blankenship-rig", "--set", "nonsense"}, "nonsense"},
+        BadCommand{{"info", "builtin:kahraman-blankenship-rig", "--set", "gear.nobody.teeth=3"},
+                   "nobody"},
+        BadCommand{{"info", "builtin:kahraman-blankenship-rig", "--bogus"}, "--bogus"}));
+
+}  // namespace
+}  // namespace geardyn::app
