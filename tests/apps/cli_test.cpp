@@ -100,6 +100,70 @@ TEST(CliTest, InfoOnHelicalPairHasOverlapAndBaseHelix) {
       1e-12);
 }
 
+// A scene file for a published worked example, written where the test can read it back.
+std::string WriteScene(const std::string& name, const std::string& text) {
+  const std::filesystem::path dir = std::filesystem::path(GEARDYN_BINARY_DIR) / "test-output";
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path path = dir / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+TEST(CliTest, InfoMatchesKhkProfileShiftedSpurExample) {
+  // KHK Gear Technical Reference, profile-shifted spur gears: m 3, α 20°, z 12/24, x 0.6/0.36,
+  // a_w 56.500 mm, tips shortened to d_a 44.840/79.400 mm → α_w 26.0888°, d_b 33.8289/67.6579 mm,
+  // ε_α 1.202 (printed precision).
+  const std::string path = WriteScene("khk_spur.toml", R"toml(
+[[gear]]
+name = "p"
+teeth = 12
+normal_module = 0.003
+profile_shift = 0.6
+tip_diameter = 0.04484
+face_width = 0.02
+mass = 1.0
+inertia = 1e-3
+[[gear]]
+name = "g"
+teeth = 24
+normal_module = 0.003
+profile_shift = 0.36
+tip_diameter = 0.0794
+face_width = 0.02
+mass = 2.0
+inertia = 4e-3
+[[mesh]]
+pinion = "p"
+gear = "g"
+center_distance = 0.0565
+[operating_point]
+speed_rpm = 1000
+torque = 10
+)toml");
+  const nlohmann::json m = RunJson({"info", path})["meshes"][0];
+  EXPECT_NEAR(m["operating_pressure_angle_deg"].get<double>(), 26.0888, 5e-5);
+  EXPECT_NEAR(2e3 * m["base_radius_pinion"].get<double>(), 33.8289, 5e-5);
+  EXPECT_NEAR(2e3 * m["base_radius_gear"].get<double>(), 67.6579, 5e-5);
+  EXPECT_NEAR(m["transverse_contact_ratio"].get<double>(), 1.202, 5e-4);
+  EXPECT_EQ(m["hunting_period_meshes"].get<long>(), 24);  // lcm(12, 24)
+}
+
+TEST(CliTest, InfoMatchesIso21771HelicalExampleThroughOverrides) {
+  // ISO 21771 profile-shift worked sheet: z 31/30, m_n 3.5 mm, α_n 20°, β 21°, Σx 0.651877131252
+  // → a 114.3447280708 mm (reference), α_wt 23.8707609654°, zero-backlash a_w 116.5 mm. The
+  // example scene's pair is turned into it with --set only.
+  const nlohmann::json r =
+      RunJson({"info", "builtin:helical-pair", "--set", "gear.pinion.teeth=31", "--set",
+               "gear.wheel.teeth=30", "--set", "gear.pinion.normal_module=0.0035", "--set",
+               "gear.wheel.normal_module=0.0035", "--set", "gear.pinion.helix_angle_deg=21",
+               "--set", "gear.wheel.helix_angle_deg=21", "--set", "gear.pinion.profile_shift=0.291",
+               "--set", "gear.wheel.profile_shift=0.360877131252"});
+  const nlohmann::json& m = r["meshes"][0];
+  EXPECT_NEAR(m["reference_center_distance"].get<double>(), 0.1143447280708, 1e-12);
+  EXPECT_NEAR(m["operating_pressure_angle_deg"].get<double>(), 23.8707609654, 2e-9);
+  EXPECT_NEAR(m["center_distance"].get<double>(), 0.1165, 1e-11);
+}
+
 TEST(CliTest, SetOverridesAValueWithoutEditingTheFile) {
   const nlohmann::json base = RunJson({"info", "builtin:kahraman-blankenship-rig"});
   const nlohmann::json r = RunJson(
