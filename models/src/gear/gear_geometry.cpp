@@ -303,6 +303,24 @@ GearPairGeometry CalcGearPairGeometry(const GearPairSpec& spec) {
   const double ea1 = std::sqrt(ra1 * ra1 - rb1 * rb1);  // T1E, pinion tip
   const double ea2 = std::sqrt(ra2 * ra2 - rb2 * rb2);  // from T2 to where the gear tip meets
   const double rho_start = internal ? ea2 - t1t2 : t1t2 - ea2;  // T1A
+  // A given centre distance must leave the tips overlapping along the line of action:
+  // g_α = T1E − T1A > 0. With T1T2 = a_w sin α_wt = sqrt(a_w² − (r_b2 ± r_b1)²) this bounds a_w,
+  // external pairs from above (g_α = T1E + T2A − T1T2), internal pairs from below
+  // (g_α = T1E − T2A + T1T2, a bound only when T2A > T1E):
+  //   external a_w < sqrt((T1E + T2A)² + (r_b1 + r_b2)²),
+  //   internal a_w > sqrt((T2A − T1E)² + (r_b2 − r_b1)²).
+  if (spec.center_distance) {
+    const double path_length = ea1 - rho_start;  // g_α
+    const double a_limit = std::hypot(internal ? ea2 - ea1 : ea1 + ea2, rb_sum);
+    GEARDYN_THROW_UNLESS(
+        path_length > 0.0,
+        "center_distance: " << Mm{a_w}
+                            << (internal ? " is below the smallest" : " exceeds the largest")
+                            << " centre distance with a positive path of contact, " << Mm{a_limit}
+                            << ", by " << Mm{std::abs(a_w - a_limit)}
+                            << " (the tips no longer overlap along the line of action: g_α = "
+                            << Mm{path_length} << ")");
+  }
   GEARDYN_THROW_UNLESS(rho_start >= -tol,
                        "gear.tip_interference: the gear tip meets the pinion flank "
                            << Mm{-rho_start}

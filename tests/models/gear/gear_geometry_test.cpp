@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "geardyn/common/errors.hpp"
@@ -513,6 +514,97 @@ TEST(GearGeometryTest, RejectsImpossibleCentreDistances) {
   EXPECT_THROWS_MESSAGE(CalcGearPairGeometry(si), InvalidInput,
                         "^center_distance: 558 mm gives negative backlash .* above the "
                         "zero-backlash centre distance 557\\.089");
+}
+
+// The message of the InvalidInput CalcGearPairGeometry throws, empty if it does not throw.
+std::string RejectionOf(const GearPairSpec& s) {
+  try {
+    (void)CalcGearPairGeometry(s);
+  } catch (const InvalidInput& e) {
+    return e.what();
+  }
+  return {};
+}
+
+// The number before " mm" that follows `label` in `message` (NaN if absent).
+double MmAfter(const std::string& message, const std::string& label) {
+  const std::size_t pos = message.find(label);
+  if (pos == std::string::npos) return std::numeric_limits<double>::quiet_NaN();
+  return std::stod(message.substr(pos + label.size()));
+}
+
+// Path of contact of ISO 21771 at centre distance a_w: external
+// g_α = ½ (√(d_a1² − d_b1²) + √(d_a2² − d_b2²)) − a_w sin α_wt, internal
+// g_α = ½ (√(d_a1² − d_b1²) − √(d_a2² − d_b2²)) + a_w sin α_wt, cos α_wt = (r_b2 ± r_b1) / a_w.
+double IsoPathOfContact(double ra1, double rb1, double ra2, double rb2, bool internal, double a_w) {
+  const double sigma = internal ? -1.0 : 1.0;
+  const double alpha_wt = std::acos((rb2 + sigma * rb1) / a_w);
+  return std::sqrt(ra1 * ra1 - rb1 * rb1) + sigma * std::sqrt(ra2 * ra2 - rb2 * rb2) -
+         sigma * a_w * std::sin(alpha_wt);
+}
+
+TEST(GearGeometryTest, RejectsCentreDistanceWithoutPathOfContact) {
+  // External: standard spur pair m 3, z 20/40 (zero backlash at 90 mm). Standard radii:
+  // r_b = z m cos α / 2, r_a = (z + 2) m / 2. The path of contact vanishes where
+  // a_w sin α_wt = √(a_w² − (r_b1 + r_b2)²) reaches T1E + T2A, i.e. at
+  // a_max = √((T1E + T2A)² + (r_b1 + r_b2)²).
+  const double alpha = DegToRad(20.0);
+  const double rb1 = 30.0 * kMm * std::cos(alpha);
+  const double rb2 = 60.0 * kMm * std::cos(alpha);
+  const double ra1 = 33.0 * kMm;
+  const double ra2 = 63.0 * kMm;
+  const double a_max =
+      std::hypot(std::sqrt(ra1 * ra1 - rb1 * rb1) + std::sqrt(ra2 * ra2 - rb2 * rb2), rb1 + rb2);
+  EXPECT_NEAR(a_max / kMm, 95.92, 0.01);
+  EXPECT_NEAR(IsoPathOfContact(ra1, rb1, ra2, rb2, false, a_max), 0.0, 1e-15);
+  EXPECT_GT(IsoPathOfContact(ra1, rb1, ra2, rb2, false, a_max * (1.0 - 1e-6)), 0.0);
+
+  GearPairSpec s = SpurSpec(3.0, 20, 40, 0.0, 0.0, 20.0);
+  s.center_distance = a_max * (1.0 - 1e-6);  // a sliver of contact: too short, but not this check
+  EXPECT_THROWS_MESSAGE(CalcGearPairGeometry(s), InvalidInput,
+                        "^transverse_contact_ratio: [0-9.e-]+ is below 1");
+  s.center_distance = a_max * (1.0 + 1e-6);
+  EXPECT_THROWS_MESSAGE(CalcGearPairGeometry(s), InvalidInput,
+                        "^center_distance: 95\\.9.* mm exceeds the largest centre distance with a "
+                        "positive path of contact, 95\\.9.* mm, by 9.*e-05 mm \\(the tips no "
+                        "longer overlap along the line of action: g_α = -");
+  s.center_distance = a_max + 2.0 * kMm;
+  std::string message = RejectionOf(s);
+  EXPECT_EQ(message.rfind("center_distance: ", 0), 0u) << message;
+  EXPECT_NEAR(MmAfter(message, "positive path of contact, "), a_max / kMm, 1e-4);
+  EXPECT_NEAR(MmAfter(message, ", by "), 2.0, 1e-5);
+
+  // Internal: the SDP/SI pair m 14, z 17/96 (zero backlash at 557.0887 mm). Withdrawing the pinion
+  // shortens the path, g_α = T1E − T2A + T1T2, which vanishes at
+  // a_min = √((T2A − T1E)² + (r_b2 − r_b1)²) (T2A > T1E here).
+  const GearPairSpec si0 = InternalSpec(14.0, 17, 96, 0.2, 0.5);
+  const double m = 14.0 * kMm;
+  const double rbi1 = 0.5 * 17.0 * m * std::cos(alpha);
+  const double rbi2 = 0.5 * 96.0 * m * std::cos(alpha);
+  const double rai1 = 0.5 * 17.0 * m + m * (1.0 + 0.2);  // external tip: r + m (h_a* + x)
+  const double rai2 = 0.5 * 96.0 * m - m * (1.0 - 0.5);  // ring tip: r − m (h_a* + x_ISO)
+  const double t2a = std::sqrt(rai2 * rai2 - rbi2 * rbi2);
+  const double t1e = std::sqrt(rai1 * rai1 - rbi1 * rbi1);
+  ASSERT_GT(t2a, t1e);
+  const double a_min = std::hypot(t2a - t1e, rbi2 - rbi1);
+  EXPECT_GT(a_min, rbi2 - rbi1);
+  EXPECT_NEAR(IsoPathOfContact(rai1, rbi1, rai2, rbi2, true, a_min), 0.0, 1e-14);
+  EXPECT_GT(IsoPathOfContact(rai1, rbi1, rai2, rbi2, true, a_min * (1.0 + 1e-6)), 0.0);
+
+  GearPairSpec si = si0;
+  si.center_distance = a_min * (1.0 + 1e-6);
+  message = RejectionOf(si);
+  EXPECT_NE(message.rfind("center_distance", 0), 0u) << message;
+  si.center_distance = a_min - 1.0 * kMm;
+  message = RejectionOf(si);
+  EXPECT_EQ(message.rfind("center_distance: ", 0), 0u) << message;
+  EXPECT_NE(message.find(" is below the smallest centre distance with a positive path of contact"),
+            std::string::npos)
+      << message;
+  EXPECT_NEAR(MmAfter(message, "positive path of contact, "), a_min / kMm, 1e-3);
+  EXPECT_NEAR(MmAfter(message, ", by "), 1.0, 1e-5);
+  // Without a given centre distance the pair runs at its zero-backlash distance, with contact.
+  EXPECT_NO_THROW(CalcGearPairGeometry(si0));
 }
 
 TEST(GearGeometryTest, RejectsShortContactRatioAndInterference) {

@@ -408,6 +408,14 @@ std::vector<BadCase> BadCases() {
                {},
                "center_distance = 0.05",
                R"(^t\.toml:{line}: mesh\.pinion-wheel: center_distance: )"});
+  // 70 mm is past a_max = sqrt((T1E + T2A)² + (r_b1 + r_b2)²) = 63.95 mm: the tips no longer
+  // overlap along the line of action (formerly "transverse_contact_ratio: -1.9 is below 1").
+  c.push_back(
+      {"CenterDistanceBeyondPathOfContact",
+       Replace(base, "gear = \"wheel\"", "gear = \"wheel\"\ncenter_distance = 0.07"),
+       {},
+       "center_distance = 0.07",
+       R"(^t\.toml:{line}: mesh\.pinion-wheel: center_distance: 70 mm exceeds the largest centre distance with a positive path of contact, 63\.94[0-9]* mm, by 6\.05[0-9]* mm \(the tips no longer overlap along the line of action: g_α = -11\.3[0-9]* mm\)$)"});
   // --- bearings ------------------------------------------------------------------------------
   c.push_back(
       {"BearingFiveStiffnessEntries",

@@ -126,6 +126,9 @@ struct GearPairGeometry {
 /// (internal pinion), "gear.teeth" (ring not larger than its pinion), "profile_shift_sum" (no
 /// zero-backlash distance), "center_distance" (not above r_b2 ± r_b1, or negative backlash),
 /// "<member>.root_radius", "<member>.tip_radius" (tip not above its base circle),
+/// "center_distance" (a given a_w at which the tips no longer overlap along the line of action,
+/// g_α ≤ 0: external pairs above sqrt((T1E + T2A)² + (r_b1 + r_b2)²), internal pairs below
+/// sqrt((T2A − T1E)² + (r_b2 − r_b1)²), with T1E = sqrt(r_a1² − r_b1²), T2A = sqrt(r_a2² − r_b2²)),
 /// "<member>.tip_interference" (a tip meets the mate below its base circle),
 /// "gear.trochoid_interference" (internal pairs), "<member>.undercut",
 /// "<member>.tip_thickness_normal", "<member>.tip_clearance" (a tip reaches the mating root

@@ -1,0 +1,46 @@
+/// @file
+/// @brief Readers of the sections of a scene file: one [[gear]], [[mesh]], [[bearing]] or
+/// [[load]] table, and the [operating_point] (internal to the scene reader).
+///
+/// Each reader rejects unknown keys, reads and checks every value (failing with
+/// `FILE:LINE: KEY: REASON`, see toml_fields.hpp) and returns the SI definition. The plausibility
+/// bounds are documented in docs/scene-format.md.
+#pragma once
+
+#include <toml++/toml.h>
+
+#include <cstddef>
+
+#include "geardyn/models/scene/scene.hpp"
+#include "scene/error_context.hpp"
+
+namespace geardyn::internal {
+
+/// Relative tolerance under which two values typed for the same quantity count as equal: equal
+/// data typed twice parse to identical doubles; this only absorbs the rounding of the degree →
+/// radian conversion.
+inline constexpr double kEqualTol = 1e-9;
+
+/// @brief Reads element `index` of [[gear]] (gear_reader.cpp).
+GearDef ReadGear(const ErrorContext& ctx, const toml::table& t, std::size_t index);
+
+/// @brief Reads element `index` of [[mesh]] and derives its pair geometry (mesh_reader.cpp).
+/// @param[in] scene the gears read so far and the meshes before this one
+MeshDef ReadMesh(const ErrorContext& ctx, const toml::table& t, std::size_t index,
+                 const Scene& scene);
+
+/// @brief Reads element `index` of [[bearing]] (bearing_reader.cpp).
+/// @param[in] scene its gears are the bodies the bearing may connect
+BearingDef ReadBearing(const ErrorContext& ctx, const toml::table& t, std::size_t index,
+                       const Scene& scene);
+
+/// @brief Reads element `index` of [[load]] (load_reader.cpp).
+TorqueLoadDef ReadLoad(const ErrorContext& ctx, const toml::table& t, std::size_t index,
+                       const Scene& scene);
+
+/// @brief Reads the required [operating_point] table of `root` (operating_point_reader.cpp).
+/// @param[in] scene with its gears and meshes (the default reference is the first mesh's pinion)
+OperatingPointDef ReadOperatingPoint(const ErrorContext& ctx, const toml::table& root,
+                                     const Scene& scene);
+
+}  // namespace geardyn::internal
