@@ -8,15 +8,17 @@ namespace {
 
 std::string FormatWhat(const std::string& source, int line, const std::string& key,
                        const std::string& reason, const std::string& override_spec) {
+  // Appended piece by piece: `":" + std::to_string(line)` trips GCC 12's -Wrestrict false
+  // positive in Release builds.
   std::string out = source;
   if (line > 0) {
-    out += ":" + std::to_string(line);
+    out.append(":").append(std::to_string(line));
   } else if (!override_spec.empty()) {
-    out += ": --set " + override_spec;
+    out.append(": --set ").append(override_spec);
   }
-  out += ": ";
-  if (!key.empty()) out += key + ": ";
-  return out + reason;
+  out.append(": ");
+  if (!key.empty()) out.append(key).append(": ");
+  return out.append(reason);
 }
 
 }  // namespace

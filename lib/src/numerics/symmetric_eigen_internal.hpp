@@ -1,0 +1,42 @@
+/// @file
+/// @brief Internal: the input checks and the result post-processing (sorting, rigid-body zeros,
+/// K-not-PSD detection, M-normalization, sign convention) shared by the dense and ARPACK
+/// generalized symmetric eigen solvers of geardyn/numerics/symmetric_eigen.hpp.
+#pragma once
+
+#include <string>
+
+#include "geardyn/common/eigen_types.hpp"
+#include "geardyn/numerics/symmetric_eigen.hpp"
+
+namespace geardyn::internal {
+
+/// Relative asymmetry max|A − Aᵀ| / max|A| above which a matrix is rejected as non-symmetric.
+inline constexpr double kSymmetryTol = 1e-10;
+
+/// @brief Throws InvalidInput naming `K` or `M`: non-square, mismatched, empty, non-finite,
+/// non-symmetric matrices, or M with a non-positive diagonal entry (then M is not PD).
+void CheckPencil(const MatrixX& K, const MatrixX& M);
+/// @copydoc CheckPencil(const MatrixX&, const MatrixX&)
+void CheckPencil(const SparseMatrix& K, const SparseMatrix& M);
+
+/// @brief Throws InvalidInput(why) unless options.IsValid(&why).
+void CheckOptions(const GeneralizedEigenOptions& options);
+
+/// @brief s = max_i |K_ii| / M_ii [units of λ]; 1 when that is 0. @pre M_ii > 0.
+double SpectrumScale(const VectorX& K_diagonal, const VectorX& M_diagonal);
+
+/// @brief Post-processing shared by both solvers, writing into `result`:
+/// * non-finite λ or φ → kNumericalIssue naming `step`, empty eigenvalues and vectors;
+/// * sorts ascending (vectors follow), sets |λ| ≤ zero_tol·s to 0 and counts them as rigid-body
+///   modes with a warning;
+/// * λ < −zero_tol·s → kNumericalIssue ("K is not positive semidefinite") unless the status is
+///   already not kSuccess;
+/// * each vector M-normalized with `M_vectors` = M·vectors (n × m; empty when the vectors are
+///   already M-normalized or not computed) and its sign fixed so that its entry of largest
+///   magnitude is positive.
+/// Expects result->spectrum_scale set; keeps an existing non-success status and message.
+void FinalizeEigenpairs(VectorX values, MatrixX vectors, const MatrixX& M_vectors, double zero_tol,
+                        const std::string& step, GeneralizedEigenResult* result);
+
+}  // namespace geardyn::internal
