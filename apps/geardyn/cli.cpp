@@ -7,6 +7,7 @@
 
 #include "geardyn/common/errors.hpp"
 #include "geardyn/info_report.hpp"
+#include "geardyn/mesh_report.hpp"
 #include "geardyn/models/scene/builtin_scenes.hpp"
 #include "geardyn/models/scene/scene_reader.hpp"
 #include "geardyn/output_files.hpp"
@@ -49,6 +50,34 @@ int RunInfo(const SceneCommandOptions& opts, std::ostream& out) {
   return kExitOk;
 }
 
+int RunMesh(const SceneCommandOptions& opts, const MeshSamplingOptions& sampling,
+            std::ostream& out) {
+  const Scene scene = LoadScene(opts.scene, opts.overrides);
+  std::vector<MeshSamples> samples;
+  const nlohmann::json report = MakeMeshReport(scene, sampling, &samples);
+  if (opts.json) {
+    out << report.dump(2) << "\n";
+  } else {
+    for (const nlohmann::json& m : report["meshes"]) {
+      out << "mesh " << m["name"].get<std::string>() << ": level " << m["level"].get<std::string>()
+          << ", " << m["time_dependence"].get<std::string>() << ", period "
+          << m["period_meshes"].get<long>() << " mesh cycle(s), K "
+          << m["stiffness"]["min"].get<double>() << " … " << m["stiffness"]["max"].get<double>()
+          << " N/m (mean " << m["stiffness"]["mean"].get<double>() << ")\n";
+    }
+  }
+  if (!opts.out_dir.empty()) {
+    WriteOutputFile(opts.out_dir, "mesh.json", report.dump(2) + "\n");
+    for (const MeshSamples& s : samples) {
+      WriteOutputFile(opts.out_dir, "mesh_" + s.mesh_name + ".csv", FormatMeshCsv(s));
+      WriteOutputFile(opts.out_dir, "mesh_" + s.mesh_name + ".svg",
+                      RenderMeshSvg(s, scene.source + " — mesh " + s.mesh_name));
+    }
+    if (!opts.json) out << "written to " << opts.out_dir << "\n";
+  }
+  return kExitOk;
+}
+
 int RunScenes(std::ostream& out) {
   for (const std::string& name : BuiltinSceneNames()) out << "builtin:" << name << "\n";
   return kExitOk;
@@ -68,6 +97,14 @@ int RunCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
   CLI::App* info = app.add_subcommand(
       "info", "print the derived geometry, ISO 6336-1 stiffness and model facts of a scene");
   AddSceneOptions(info, &info_opts);
+
+  SceneCommandOptions mesh_opts;
+  MeshSamplingOptions sampling;
+  CLI::App* mesh = app.add_subcommand(
+      "mesh", "write K(θ), h(θ), μ(θ), ε(θ) of every mesh over one period (CSV, JSON, SVG)");
+  AddSceneOptions(mesh, &mesh_opts);
+  mesh->add_option("--samples", sampling.samples_per_mesh,
+                   "samples per mesh cycle (default: 360, fewer over long hunting periods)");
 
   CLI::App* scenes = app.add_subcommand("scenes", "list the built-in scenes");
 
@@ -95,6 +132,7 @@ int RunCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
 
   try {
     if (info->parsed()) return RunInfo(info_opts, out);
+    if (mesh->parsed()) return RunMesh(mesh_opts, sampling, out);
     if (scenes->parsed()) return RunScenes(out);
   } catch (const InvalidInput& e) {
     err << "geardyn: error: " << e.what() << "\n";

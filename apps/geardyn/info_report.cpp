@@ -7,6 +7,7 @@
 
 #include "geardyn/common/units.hpp"
 #include "geardyn/models/gear/iso_stiffness.hpp"
+#include "geardyn/models/scene/mesh_model.hpp"
 
 namespace geardyn::app {
 namespace {
@@ -44,23 +45,10 @@ json GearReport(const Scene& scene, const GearDef& def, const GearGeometry& g) {
           {"speed_rpm", RadPerSecToRpm(scene.GearSpeed(def.name))}};
 }
 
-// ISO 6336-1's stiffness for F_t K_A / b < 100 N/mm is scaled with the line load; the load is
-// known when the operating-point body is one of the mesh's gears (K_A = 1, F_t at the reference
-// circle). Otherwise (a gear further down a train) the unscaled value is reported.
-std::optional<double> MeshLineLoad(const Scene& scene, const MeshDef& mesh) {
-  const GearPairGeometry& g = mesh.geometry;
-  const std::string& body = scene.operating_point.body;
-  double radius = 0.0;
-  if (body == mesh.pinion) radius = g.pinion.reference_radius;
-  if (body == mesh.gear) radius = g.gear.reference_radius;
-  if (radius <= 0.0) return std::nullopt;
-  return std::abs(scene.operating_point.torque) / radius / g.face_width;
-}
-
 json MeshReport(const Scene& scene, const MeshDef& mesh) {
   const GearPairGeometry& g = mesh.geometry;
   IsoStiffnessOptions iso_options;
-  iso_options.line_load = MeshLineLoad(scene, mesh);
+  iso_options.line_load = geardyn::MeshLineLoad(scene, mesh);  // K_A = 1, nullopt off the op. gear
   const IsoMeshStiffness iso = CalcIsoMeshStiffness(g, iso_options);
   const double f_mesh = scene.MeshFrequencyHz(mesh);
   json r = {

@@ -375,7 +375,8 @@ ContactLineModel::ContactLineModel(const ZoneOfAction& zone, StiffnessProfile pr
   }
 }
 
-void ContactLineModel::AddLine(double x_line, ContactLineIntegrals* sums) const {
+void ContactLineModel::AddLine(double x_line, double y_min, double y_max,
+                               ContactLineIntegrals* sums) const {
   // Adds ∫ over σ ∈ [σa, σb] with k linear from ka to kb (closed forms, exact):
   //   ∫k = Δ(ka + kb)/2, ∫kσ = Δ[ka(2σa + σb) + kb(σa + 2σb)]/6,
   //   ∫kσ² = Δ[ka(3σa² + 2σaσb + σb²) + kb(σa² + 2σaσb + 3σb²)]/12.
@@ -393,10 +394,12 @@ void ContactLineModel::AddLine(double x_line, ContactLineIntegrals* sums) const 
   if (tan_ == 0.0) {
     // Spur: the whole face at roll x_line, if x_s ≤ x_line < x_e (right-continuous in θ).
     if (x_line < x_start_ || x_line >= x_end_) return;
+    const double ya = std::max(-b_, y_min), yb = std::min(b_, y_max);
+    if (!(yb > ya)) return;
     for (const Segment& s : segments_) {
       if (x_line < s.x_end || &s == &segments_.back()) {
         const double k = s.KAt(x_line);
-        add(-b_, b_, k, k);
+        add(ya, yb, k, k);
         ++sums->num_lines;
         return;
       }
@@ -408,8 +411,8 @@ void ContactLineModel::AddLine(double x_line, ContactLineIntegrals* sums) const 
   auto y_range = [&](double xa, double xb, double* lo, double* hi) {
     const double y1 = (x_line - xb) / tan_;
     const double y2 = (x_line - xa) / tan_;
-    *lo = std::max(-b_, std::min(y1, y2));
-    *hi = std::min(b_, std::max(y1, y2));
+    *lo = std::max(std::max(-b_, y_min), std::min(y1, y2));
+    *hi = std::min(std::min(b_, y_max), std::max(y1, y2));
   };
   double lo = 0.0, hi = 0.0;
   y_range(x_start_, x_end_, &lo, &hi);
@@ -429,17 +432,60 @@ void ContactLineModel::AddLine(double x_line, ContactLineIntegrals* sums) const 
   }
 }
 
-ContactLineIntegrals ContactLineModel::CalcIntegrals(double theta) const {
+void ContactLineModel::LinesNear(double theta, double* phase, long* j_min, long* j_max) const {
   GEARDYN_THROW_UNLESS(std::isfinite(theta),
                        "CalcIntegrals: theta = " << theta << " is not finite");
   const double p = zone_.transverse_base_pitch;
-  const double phase = WrapMeshPhase(theta) / kTwoPi;  // x_j = (phase + j) p_bt
-  const double reach = b_ * std::abs(tan_);            // a line spans x_j ± b|tan β_b|
-  const auto j_min = static_cast<long>(std::floor((x_start_ - reach) / p - phase)) - 1;
-  const auto j_max = static_cast<long>(std::ceil((x_end_ + reach) / p - phase)) + 1;
+  *phase = WrapMeshPhase(theta) / kTwoPi;    // x_j = (phase + j) p_bt
+  const double reach = b_ * std::abs(tan_);  // a line spans x_j ± b|tan β_b|
+  *j_min = static_cast<long>(std::floor((x_start_ - reach) / p - *phase)) - 1;
+  *j_max = static_cast<long>(std::ceil((x_end_ + reach) / p - *phase)) + 1;
+}
+
+ContactLineIntegrals ContactLineModel::CalcIntegrals(double theta) const {
+  double phase = 0.0;
+  long j_min = 0, j_max = 0;
+  LinesNear(theta, &phase, &j_min, &j_max);
+  const double p = zone_.transverse_base_pitch;
   ContactLineIntegrals sums;
-  for (long j = j_min; j <= j_max; ++j) AddLine((phase + static_cast<double>(j)) * p, &sums);
+  for (long j = j_min; j <= j_max; ++j) {
+    AddLine((phase + static_cast<double>(j)) * p, -b_, b_, &sums);
+  }
   return sums;
+}
+
+ContactLineIntegrals ContactLineModel::CalcIntegrals(double theta, double sigma_min,
+                                                     double sigma_max) const {
+  GEARDYN_THROW_UNLESS(
+      std::isfinite(sigma_min) && std::isfinite(sigma_max),
+      "CalcIntegrals: sigma band [" << sigma_min << ", " << sigma_max << "] m is not finite");
+  double phase = 0.0;
+  long j_min = 0, j_max = 0;
+  LinesNear(theta, &phase, &j_min, &j_max);
+  const double p = zone_.transverse_base_pitch;
+  // On line x_j: σ = s(y/cos β_b − x_j sin β_b) ⇔ y = cos β_b (s σ + x_j sin β_b); s σ ranges
+  // over [σ_min, σ_max] (s = +1) or [−σ_max, −σ_min] (s = −1).
+  const double t_lo = sign_ > 0.0 ? sigma_min : -sigma_max;
+  const double t_hi = sign_ > 0.0 ? sigma_max : -sigma_min;
+  ContactLineIntegrals sums;
+  for (long j = j_min; j <= j_max; ++j) {
+    const double x_line = (phase + static_cast<double>(j)) * p;
+    AddLine(x_line, cos_ * (t_lo + x_line * sin_), cos_ * (t_hi + x_line * sin_), &sums);
+  }
+  return sums;
+}
+
+Vector2 ContactLineModel::SigmaRange() const {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -lo;
+  for (double x : {x_start_, x_end_}) {
+    for (double y : {-b_, b_}) {
+      const double sigma = sign_ * (-x * sin_ + y * cos_);
+      lo = std::min(lo, sigma);
+      hi = std::max(hi, sigma);
+    }
+  }
+  return Vector2(lo, hi);
 }
 
 MeshParameters ContactLineModel::CalcMeshParameters(double theta) const {

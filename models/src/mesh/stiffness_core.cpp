@@ -121,18 +121,6 @@ double CalcMeshDampingCoefficient(double damping_ratio, double K, double equival
   return 2.0 * damping_ratio * std::sqrt(K * equivalent_mass);
 }
 
-const char* ToString(MeshCoreLevel level) {
-  switch (level) {
-    case MeshCoreLevel::kBlankenshipSingh:
-      return "blankenship_singh";
-    case MeshCoreLevel::kCoupling4Dof:
-      return "coupling_4dof";
-    case MeshCoreLevel::kTorsional:
-      return "torsional";
-  }
-  return "unknown";
-}
-
 Matrix2 CalcLevelCore(MeshCoreLevel level, double K, double h, double mu, double half_face_width) {
   const Matrix2 K2 = CalcStiffnessCore(K, h, mu, half_face_width);
   switch (level) {
@@ -144,15 +132,6 @@ Matrix2 CalcLevelCore(MeshCoreLevel level, double K, double h, double mu, double
       return Matrix2{{K, 0.0}, {0.0, 0.0}};
   }
   return K2;
-}
-
-Matrix2x12 CalcLevelJacobian(MeshCoreLevel level, const Matrix2x12& G) {
-  if (level != MeshCoreLevel::kTorsional) return G;
-  // Translations and tilts held by rigid supports: only the rotations about the axes remain.
-  Matrix2x12 G_t = Matrix2x12::Zero();
-  G_t.col(5) = G.col(5);
-  G_t.col(11) = G.col(11);
-  return G_t;
 }
 
 TorsionalCore CalcTorsionalCore(const Matrix2x12& G, double K) {

@@ -1,4 +1,5 @@
-// Reading one [[mesh]] table: the two gears, their compatibility, and the pair geometry.
+// Reading one [[mesh]] table: the two gears, their compatibility, the pair geometry and the mesh
+// model (mesh_model_reader.cpp).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -6,6 +7,7 @@
 
 #include "geardyn/common/units.hpp"
 #include "scene/element_names.hpp"
+#include "scene/mesh_model_reader.hpp"
 #include "scene/section_readers.hpp"
 #include "scene/toml_fields.hpp"
 
@@ -87,7 +89,11 @@ GearPairGeometry ReadGeometry(const Fields& f, const std::string& prefix, const 
 MeshDef ReadMesh(const ErrorContext& ctx, const toml::table& t, std::size_t index,
                  const Scene& scene) {
   MeshDef m;
-  CheckElementKeys(ctx, t, "mesh", index, {"name", "pinion", "gear", "center_distance"});
+  CheckElementKeys(
+      ctx, t, "mesh", index,
+      {"name", "pinion", "gear", "center_distance", "model", "slices", "stiffness_per_length",
+       "damping_ratio", "damping", "coefficient_form", "fourier_terms", "fourier_tolerance",
+       "table_samples", "modifications", "errors", "parameters"});
   const Fields named(ctx, t, ElementPrefix(t, "mesh", index));
   m.pinion = named.ReqString("pinion", "name of the driving [[gear]]");
   m.gear = named.ReqString("gear", "name of the driven [[gear]]");
@@ -112,6 +118,7 @@ MeshDef ReadMesh(const ErrorContext& ctx, const toml::table& t, std::size_t inde
   }
   CheckCompatible(ctx, t, prefix, p, g);
   m.geometry = ReadGeometry(f, prefix, p, g);
+  m.model = ReadMeshModel(f, p, g, m.geometry);
   return m;
 }
 

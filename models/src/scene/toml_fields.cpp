@@ -143,6 +143,39 @@ std::optional<bool> Fields::OptBool(std::string_view key) const {
   return b->get();
 }
 
+std::optional<int> Fields::OptInt(std::string_view key, int min, int max) const {
+  const toml::node* n = Find(key);
+  if (n == nullptr) return std::nullopt;
+  const auto* i = n->as_integer();
+  if (i == nullptr) Fail(key, "must be an integer, got " + Describe(*n));
+  const std::int64_t v = i->get();
+  if (v < min) Fail(key, "must be >= " + std::to_string(min) + ", got " + std::to_string(v));
+  if (v > max) Fail(key, "must be at most " + std::to_string(max) + ", got " + std::to_string(v));
+  return static_cast<int>(v);
+}
+
+const toml::table* Fields::OptTable(std::string_view key) const {
+  const toml::node* n = Find(key);
+  if (n == nullptr) return nullptr;
+  const toml::table* t = n->as_table();
+  if (t == nullptr) Fail(key, "must be a table, got " + Describe(*n));
+  return t;
+}
+
+std::optional<std::vector<Number>> Fields::OptNumberArray(std::string_view key) const {
+  const toml::node* n = Find(key);
+  if (n == nullptr) return std::nullopt;
+  const toml::array* a = n->as_array();
+  if (a == nullptr) Fail(key, "must be an array of numbers, got " + Describe(*n));
+  std::vector<Number> out;
+  out.reserve(a->size());
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const toml::node* e = a->get(i);
+    out.push_back({ReadFiniteNumber(ctx_, *e, Key(key), "entry " + std::to_string(i) + " "), e});
+  }
+  return out;
+}
+
 void Fields::Positive(std::string_view key, const Number& n) const {
   if (!(n.value > 0.0)) Fail(key, "must be > 0, got " + FormatNumber(n.value));
 }

@@ -15,6 +15,7 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "scene/error_context.hpp"
 
@@ -77,6 +78,13 @@ class Fields {
   std::optional<std::string> OptString(std::string_view key) const;
   std::string ReqString(std::string_view key, const std::string& what) const;
   std::optional<bool> OptBool(std::string_view key) const;
+  /// An integer in [min, max] if given ("must be an integer", "must be >= MIN", ...).
+  std::optional<int> OptInt(std::string_view key, int min, int max) const;
+  /// A sub-table ([prefix.key] or an inline table) if given; fails on any other value.
+  const toml::table* OptTable(std::string_view key) const;
+  /// An array of finite numbers (possibly empty) if given; entry errors name the entry
+  /// ("entry 3 must be a number, got ...") and are located at it.
+  std::optional<std::vector<Number>> OptNumberArray(std::string_view key) const;
 
   // Bound checks on a number read from this table.
   void Positive(std::string_view key, const Number& n) const;

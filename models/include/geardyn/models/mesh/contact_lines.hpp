@@ -196,6 +196,17 @@ class ContactLineModel {
 
   /// @brief Closed-form sums over the clipped lines at mesh phase θ [rad] (any finite value).
   ContactLineIntegrals CalcIntegrals(double theta) const;
+  /// @brief The same sums restricted to the σ-band σ_min ≤ σ ≤ σ_max [m] (σ along σ̂ from p0,
+  /// see the @file conventions): each clipped line is clipped once more to the band. The bands
+  /// of a partition of SigmaRange() add up to CalcIntegrals(θ) (up to round-off). For spur
+  /// gears σ = s·y, so a band is a face strip; for helical gears a band is a strip
+  /// perpendicular to the contact lines (the slices of spec 01 §4.4, geardyn/models/mesh/
+  /// mesh_cores.hpp). Never allocates.
+  /// @throws InvalidInput if θ or a bound is not finite.
+  ContactLineIntegrals CalcIntegrals(double theta, double sigma_min, double sigma_max) const;
+  /// @brief [σ_min, σ_max] [m] spanned by the zone of action: σ = s(−x sin β_b + y cos β_b)
+  /// over its corners; width g_α|sin β_b| + B cos β_b (B for spur gears).
+  Vector2 SigmaRange() const;
   /// @brief K, h, κ, μ at θ [rad].
   MeshParameters CalcMeshParameters(double theta) const;
   /// @brief The channels (K, K·h, K·μ·b²) at θ into out (3); never allocates.
@@ -213,7 +224,10 @@ class ContactLineModel {
       return k_begin + (k_end - k_begin) * (x - x_begin) / (x_end - x_begin);
     }
   };
-  void AddLine(double x_line, ContactLineIntegrals* sums) const;
+  // Adds line x_line clipped to the zone and to the face coordinates y ∈ [y_min, y_max].
+  void AddLine(double x_line, double y_min, double y_max, ContactLineIntegrals* sums) const;
+  // The phase θ/2π (wrapped) and the range of line indices j that can touch the zone at θ.
+  void LinesNear(double theta, double* phase, long* j_min, long* j_max) const;
 
   ZoneOfAction zone_;
   StiffnessProfile profile_;

@@ -24,6 +24,7 @@
 #include <Eigen/Core>
 
 #include "geardyn/common/eigen_types.hpp"
+#include "geardyn/system/mesh_core.hpp"
 
 namespace geardyn {
 
@@ -98,11 +99,9 @@ Matrix12 CalcMeshDamping(const Matrix2x12& G, const Matrix2& K2, double c_m);
 /// @throws InvalidInput naming the argument that is negative or non-finite.
 double CalcMeshDampingCoefficient(double damping_ratio, double K, double equivalent_mass);
 
-/// The mesh-core levels of spec 01 §5 that share G (see the file comment).
-enum class MeshCoreLevel { kBlankenshipSingh, kCoupling4Dof, kTorsional };
-
-/// Short name of a level ("blankenship_singh", "coupling_4dof", "torsional").
-const char* ToString(MeshCoreLevel level);
+// MeshCoreLevel (the levels of spec 01 §5 that share G, see the file comment),
+// ToString(MeshCoreLevel) and CalcLevelJacobian live in geardyn/system/mesh_core.hpp (lib), so
+// that analyses can read a core's level without depending on geardyn::models.
 
 /// @brief The 2×2 core of a level from the same data (K, h, μ, b); every input is validated for
 /// every level (CalcStiffnessCore), so bad data never hides behind a reduced level.
@@ -114,12 +113,6 @@ const char* ToString(MeshCoreLevel level);
 /// @return K2 (kBlankenshipSingh) or K diag(1, 0) (kCoupling4Dof, kTorsional) [N/m, N, N·m].
 /// @throws InvalidInput as CalcStiffnessCore.
 Matrix2 CalcLevelCore(MeshCoreLevel level, double K, double h, double mu, double half_face_width);
-
-/// @brief G as seen by a level: G itself, or for kTorsional only its θz columns (5 and 11).
-/// @param[in] level model level.
-/// @param[in] G mesh Jacobian (2×12) [-, m].
-/// @return the level's Jacobian (2×12) [-, m].
-Matrix2x12 CalcLevelJacobian(MeshCoreLevel level, const Matrix2x12& G);
 
 /// @brief The torsional SDOF mesh (Kahraman & Singh 1990): stiffness k on the transverse
 /// line-of-action coordinate x = pinion_arm θ_iz + gear_arm θ_jz (x > 0: approach).

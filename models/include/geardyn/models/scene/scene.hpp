@@ -16,6 +16,7 @@
 #include "geardyn/common/eigen_types.hpp"
 #include "geardyn/common/errors.hpp"
 #include "geardyn/models/gear/gear_geometry.hpp"
+#include "geardyn/models/scene/mesh_model.hpp"
 
 namespace geardyn {
 
@@ -32,12 +33,16 @@ struct GearDef {
   std::optional<double> transverse_inertia;  ///< about a diameter through the centre [kg m²]
 };
 
-/// @brief One gear mesh between two gears of the scene, with its derived pair geometry.
+/// @brief One gear mesh between two gears of the scene, with its derived pair geometry and the
+/// mesh model the scene asks for.
 struct MeshDef {
   std::string name;           ///< unique among the meshes; default "<pinion>-<gear>"
   std::string pinion;         ///< name of the driving member (never an internal gear)
   std::string gear;           ///< name of the driven member (may be internal)
   GearPairGeometry geometry;  ///< CalcGearPairGeometry of the two gears' data
+  /// The requested mesh model: level, stiffness source, modifications, errors, damping, user
+  /// parameters (mesh_model.hpp; BuildMeshCore makes its MeshCore).
+  MeshModelDef model;
 };
 
 /// @brief A linear 6-DOF spring-damper between a gear body and the ground or another gear.

@@ -1,0 +1,199 @@
+#include "geardyn/mesh_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <type_traits>
+#include <variant>
+
+#include "geardyn/common/check.hpp"
+#include "geardyn/common/units.hpp"
+#include "geardyn/models/mesh/contact_lines.hpp"
+#include "geardyn/models/mesh/stiffness_core.hpp"
+#include "geardyn/models/scene/mesh_model.hpp"
+#include "geardyn/svg_plot.hpp"
+
+namespace geardyn::app {
+namespace {
+
+using nlohmann::json;
+
+constexpr int kReportedHarmonics = 10;
+constexpr int kDefaultSamplesPerMesh = 360;
+constexpr int kMinAutoSamplesPerMesh = 16;
+
+int SamplesPerMesh(const MeshSamplingOptions& options, std::int64_t period_meshes) {
+  if (options.samples_per_mesh > 0) return options.samples_per_mesh;
+  const long budget =
+      MeshSamplingOptions::kMaxAutoSamples / std::max<std::int64_t>(1, period_meshes);
+  return static_cast<int>(std::clamp<long>(budget, kMinAutoSamplesPerMesh, kDefaultSamplesPerMesh));
+}
+
+void AppendParameters(const MeshParameters& p, MeshSamples* s) {
+  s->stiffness.push_back(p.stiffness);
+  s->load_centre.push_back(p.load_centre);
+  s->kappa.push_back(p.kappa);
+  s->mu.push_back(p.mu);
+}
+
+// Samples a linear core: stiffness channels (K, K·h, K·μ·b²) and ε from the core itself.
+void SampleLinear(const LinearMeshCore& core, const std::vector<double>& thetas, MeshSamples* s) {
+  VectorX channels(LinearMeshCore::kNumStiffnessChannels);
+  const double b = core.half_face_width();
+  for (double theta : thetas) {
+    Evaluate(core.stiffness(), theta, channels);
+    AppendParameters(MeshParametersFromChannels(channels[0], channels[1], channels[2], b), s);
+    if (core.transmission_error()) {
+      const Vector2 eps = EvalTransmissionError(core, theta);
+      s->te_eta.push_back(eps[0]);
+      s->te_zeta.push_back(eps[1]);
+    }
+  }
+}
+
+// Samples a slice core with every slice loaded (its small-motion limit): the same channels as
+// the contact lines, and ε = K2⁻¹ [Σ k_s e_s, −Σ k_s σ_s e_s] when slices carry separations.
+void SampleSlices(const SliceMeshCore& core, const std::vector<double>& thetas, MeshSamples* s) {
+  SliceMeshWorkspace ws(core);
+  const double b = core.half_face_width();
+  for (double theta : thetas) {
+    EvalSliceValues(core, ws, theta);
+    const double k = ws.stiffness.sum();
+    const double kh = ws.stiffness.dot(core.sigma());
+    const double kmu = ws.stiffness.dot(core.sigma().cwiseAbs2());
+    AppendParameters(MeshParametersFromChannels(k, kh, kmu, b), s);
+    if (core.separation()) {
+      const Matrix2 K2 = (Matrix2() << k, -kh, -kh, kmu).finished();
+      const double ke = ws.stiffness.dot(ws.separation);
+      const double kse = ws.stiffness.cwiseProduct(core.sigma()).dot(ws.separation);
+      const Vector2 eps = CalcTransmissionErrorPair(K2, ke, kse);
+      s->te_eta.push_back(eps[0]);
+      s->te_zeta.push_back(eps[1]);
+    }
+  }
+}
+
+json Range(const std::vector<double>& v) {
+  if (v.empty()) return nullptr;
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  double sum = 0.0;
+  for (double x : v) sum += x;
+  return {{"min", *lo},
+          {"max", *hi},
+          {"mean", sum / static_cast<double>(v.size())},
+          {"peak_to_peak", *hi - *lo}};
+}
+
+// Amplitudes 2|c_n| of the first harmonics of K (mesh orders n = 1, 2, …) from the core's own
+// coefficient (exact for piecewise-constant and Fourier forms).
+json StiffnessHarmonics(const MeshCore& core) {
+  const Coefficient* coef = std::visit(
+      [](const auto& c) -> const Coefficient* {
+        using T = std::decay_t<decltype(c)>;
+        if constexpr (std::is_same_v<T, LinearMeshCore>) {
+          return &c.stiffness();
+        } else {
+          return nullptr;
+        }
+      },
+      core);
+  if (coef == nullptr) return nullptr;
+  const FourierCoefficient f = ToFourier(*coef, kReportedHarmonics);
+  json amplitudes = json::array();
+  for (int n = 0; n < f.num_terms(); ++n) amplitudes.push_back(2.0 * std::abs(f.harmonics()(0, n)));
+  return amplitudes;
+}
+
+}  // namespace
+
+json MakeMeshReport(const Scene& scene, const MeshSamplingOptions& options,
+                    std::vector<MeshSamples>* samples) {
+  GEARDYN_THROW_UNLESS(options.samples_per_mesh >= 0,
+                       "--samples: must be positive, got " << options.samples_per_mesh);
+  json meshes = json::array();
+  samples->clear();
+  for (const MeshDef& mesh : scene.meshes) {
+    const BuiltMeshCore built = BuildMeshCore(scene, mesh);
+    const std::int64_t period = PeriodMeshes(built.core);
+    const int per_mesh = SamplesPerMesh(options, period);
+    const std::int64_t count = period * per_mesh;
+    MeshSamples s;
+    s.mesh_name = mesh.name;
+    std::vector<double> thetas(static_cast<size_t>(count));
+    for (std::int64_t i = 0; i < count; ++i) {
+      s.cycle.push_back(static_cast<double>(i) / per_mesh);
+      thetas[static_cast<size_t>(i)] = 2.0 * kPi * s.cycle.back();
+    }
+    std::visit(
+        [&](const auto& core) {
+          using T = std::decay_t<decltype(core)>;
+          if constexpr (std::is_same_v<T, LinearMeshCore>) {
+            SampleLinear(core, thetas, &s);
+          } else if constexpr (std::is_same_v<T, SliceMeshCore>) {
+            SampleSlices(core, thetas, &s);
+          } else {
+            GEARDYN_THROW_UNLESS(false, "mesh." << mesh.name
+                                                << ": a nonlinear contact core has no sampled "
+                                                   "mesh parameters");
+          }
+        },
+        built.core);
+    json m = {{"name", mesh.name},
+              {"level", ToString(mesh.model.level)},
+              {"time_dependence", TimeDependenceName(Classify(built.core))},
+              {"drive_sign", built.drive_sign},
+              {"period_meshes", period},
+              {"samples_per_mesh", per_mesh},
+              {"stiffness", Range(s.stiffness)},
+              {"load_centre", Range(s.load_centre)},
+              {"kappa", Range(s.kappa)},
+              {"mu", Range(s.mu)},
+              {"te_eta", Range(s.te_eta)},
+              {"te_zeta", Range(s.te_zeta)},
+              {"stiffness_harmonic_amplitudes", StiffnessHarmonics(built.core)},
+              {"warnings", built.warnings}};
+    meshes.push_back(m);
+    samples->push_back(std::move(s));
+  }
+  return {{"scene", {{"source", scene.source}, {"title", scene.title}}},
+          {"units",
+           {{"stiffness", "N/m"},
+            {"load_centre", "m (along the contact lines from the pitch point)"},
+            {"kappa", "-"},
+            {"mu", "-"},
+            {"te_eta", "m"},
+            {"te_zeta", "rad"},
+            {"cycle", "mesh cycles (theta / 2 pi)"}}},
+          {"meshes", meshes}};
+}
+
+std::string FormatMeshCsv(const MeshSamples& s) {
+  std::ostringstream out;
+  out.precision(12);
+  const bool te = !s.te_eta.empty();
+  out << "cycle,stiffness_N_per_m,load_centre_m,kappa,mu" << (te ? ",te_eta_m,te_zeta_rad" : "")
+      << "\n";
+  for (size_t i = 0; i < s.cycle.size(); ++i) {
+    out << s.cycle[i] << "," << s.stiffness[i] << "," << s.load_centre[i] << "," << s.kappa[i]
+        << "," << s.mu[i];
+    if (te) out << "," << s.te_eta[i] << "," << s.te_zeta[i];
+    out << "\n";
+  }
+  return out.str();
+}
+
+std::string RenderMeshSvg(const MeshSamples& s, const std::string& title) {
+  PlotSpec spec;
+  spec.title = title;
+  spec.x_label = "mesh cycles θ/2π [-]";
+  spec.panels.push_back({"K [N/m]", {{"", s.cycle, s.stiffness}}});
+  spec.panels.push_back({"h [m]", {{"", s.cycle, s.load_centre}}});
+  spec.panels.push_back({"μ [-]", {{"", s.cycle, s.mu}}});
+  if (!s.te_eta.empty()) {
+    spec.panels.push_back({"ε_η [m]", {{"", s.cycle, s.te_eta}}});
+    spec.panels.push_back({"ε_ζ [rad]", {{"", s.cycle, s.te_zeta}}});
+  }
+  return RenderSvg(spec);
+}
+
+}  // namespace geardyn::app

@@ -1,0 +1,38 @@
+/// @file
+/// @brief A small, dependency-free SVG line-plot writer for the command's result plots: stacked
+/// panels sharing one x axis, several series per panel, solid or dashed, with "nice" ticks.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace geardyn::app {
+
+/// One curve. Non-finite y values break the line (nothing is drawn across them).
+struct PlotSeries {
+  std::string label;      ///< legend text (empty: no legend entry)
+  std::vector<double> x;  ///< abscissae (same length as y)
+  std::vector<double> y;  ///< ordinates
+  bool dashed = false;    ///< dashed line (e.g. an unstable branch)
+};
+
+/// One panel: a y axis and its curves.
+struct PlotPanel {
+  std::string y_label;  ///< axis label with unit, e.g. "K [N/m]"
+  std::vector<PlotSeries> series;
+};
+
+/// A figure of panels stacked vertically over a common x axis.
+struct PlotSpec {
+  std::string title;
+  std::string x_label;  ///< with unit
+  std::vector<PlotPanel> panels;
+  int width = 900;         ///< [px]
+  int panel_height = 220;  ///< [px]
+};
+
+/// @brief Renders the figure as a standalone SVG document.
+/// @throws InvalidInput if a series has x and y of different lengths.
+std::string RenderSvg(const PlotSpec& spec);
+
+}  // namespace geardyn::app

@@ -1,0 +1,141 @@
+#include "geardyn/system/static_deflection.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "geardyn/common/check.hpp"
+#include "geardyn/system/workspace.hpp"
+
+namespace geardyn {
+
+bool StaticDeflectionOptions::IsValid(std::string* why) const {
+  std::ostringstream os;
+  if (!(null_tol > 0.0 && null_tol < 1.0)) {
+    os << "null_tol: must be in (0, 1), got " << null_tol;
+  } else if (!(balance_tol > 0.0 && std::isfinite(balance_tol))) {
+    os << "balance_tol: must be finite and > 0, got " << balance_tol;
+  } else if (samples_per_period < 1) {
+    os << "samples_per_period: must be ≥ 1, got " << samples_per_period;
+  } else {
+    return true;
+  }
+  if (why != nullptr) *why = os.str();
+  return false;
+}
+
+StaticDeflectionResult SolveStaticDeflection(const SystemModel& model,
+                                             const StaticDeflectionOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  std::string why;
+  GEARDYN_THROW_UNLESS(options.IsValid(&why), why);
+  StaticDeflectionResult result;
+  const int n = model.num_dofs();
+  SystemWorkspace ws(model, StorageKind::kDense);
+  const MatrixX kbar = AssembleMeanStiffness(model, ws);
+  result.load = AssembleMeanLoad(model, ws, options.samples_per_period);
+
+  // K̄ = V Λ Vᵀ; null space = eigenvalues ≤ tol·max. Scale DOFs by √diag(K̄) first so that mixed
+  // units (m, rad) do not decide what is "small".
+  VectorX scale = kbar.diagonal().cwiseAbs().cwiseSqrt();
+  for (int i = 0; i < n; ++i) {
+    if (!(scale(i) > 0.0)) scale(i) = 1.0;
+  }
+  const VectorX inv_scale = scale.cwiseInverse();
+  const MatrixX ks = inv_scale.asDiagonal() * kbar * inv_scale.asDiagonal();
+  Eigen::SelfAdjointEigenSolver<MatrixX> eig(0.5 * (ks + ks.transpose()));
+  if (eig.info() != Eigen::Success) {
+    result.summary.status = Status::kNumericalIssue;
+    result.summary.message = "eigen-decomposition of the mean stiffness failed";
+    return result;
+  }
+  const VectorX& lambda = eig.eigenvalues();
+  const double largest = n > 0 ? lambda.cwiseAbs().maxCoeff() : 0.0;
+  const VectorX fs = inv_scale.asDiagonal() * result.load;  // load in scaled coordinates
+  VectorX ys = VectorX::Zero(n);
+  double unbalanced2 = 0.0;
+  for (int r = 0; r < n; ++r) {
+    const double proj = eig.eigenvectors().col(r).dot(fs);
+    if (lambda(r) <= options.null_tol * largest) {
+      ++result.num_rigid_modes;
+      unbalanced2 += proj * proj;
+    } else {
+      ys += (proj / lambda(r)) * eig.eigenvectors().col(r);
+    }
+  }
+  result.deflection = inv_scale.asDiagonal() * ys;
+  const double unbalanced = std::sqrt(unbalanced2);
+  // Unbalanced load in the original units: report the scaled measure relative to ‖f_s‖.
+  const double fnorm = fs.norm();
+  result.unbalanced_load = unbalanced;
+  if (result.num_rigid_modes > 0) {
+    std::ostringstream os;
+    os << result.num_rigid_modes << " rigid-body mode(s) of the mean stiffness; solved in the "
+       << "complement";
+    result.summary.warnings.push_back(os.str());
+  }
+  if (fnorm > 0.0 && unbalanced > options.balance_tol * fnorm) {
+    std::ostringstream os;
+    os << "the mean load is not balanced: a part " << unbalanced / fnorm
+       << " (relative) acts on rigid-body modes (the torques do not balance through the meshes "
+          "and supports); it was removed";
+    result.summary.warnings.push_back(os.str());
+  }
+
+  // Meshes.
+  const std::vector<SystemMesh>& meshes = model.meshes();
+  for (int k = 0; k < static_cast<int>(meshes.size()); ++k) {
+    const SystemMesh& mesh = meshes[k];
+    Vector12 q = Vector12::Zero();
+    for (int a = 0; a < 12; ++a) {
+      if (mesh.dofs[a] >= 0) q(a) = result.deflection(mesh.dofs[a]);
+    }
+    const Vector2 delta = mesh.G * q;
+    // Mean mesh force F̄ = K̄2 δ̄ − mean(K2 ε) (spec 01 §3: F = K2 (δ − ε)).
+    Vector2 te_load = Vector2::Zero();
+    if (const auto* core = std::get_if<LinearMeshCore>(&mesh.core)) {
+      if (core->transmission_error()) {
+        const std::int64_t period = PeriodMeshes(*core);
+        const std::int64_t samples = static_cast<std::int64_t>(options.samples_per_period) * period;
+        for (std::int64_t s = 0; s < samples; ++s) {
+          te_load += EvalTransmissionErrorLoad(*core, 2.0 * M_PI * static_cast<double>(period) *
+                                                          static_cast<double>(s) /
+                                                          static_cast<double>(samples));
+        }
+        te_load /= static_cast<double>(samples);
+      }
+    }
+    const Vector2 force = mesh.mean_core_stiffness * delta - te_load;
+    MeshStaticState state;
+    state.name = mesh.name;
+    state.delta_eta = delta(0);
+    state.delta_zeta = delta(1);
+    state.force_eta = force(0);
+    state.moment_zeta = force(1);
+    const bool has_stiffness = mesh.mean_core_stiffness(0, 0) > 0.0;
+    state.contact_open = has_stiffness && force(0) <= 0.0;
+    if (state.contact_open) {
+      std::ostringstream os;
+      os << "mesh '" << mesh.name << "': the mean load would open the contact (mean mesh force "
+         << force(0) << " N ≤ 0 with the drive convention: the torque drives the other flank)";
+      result.summary.warnings.push_back(os.str());
+    }
+    result.meshes.push_back(state);
+  }
+
+  for (const SystemElement& e : model.elements()) {
+    VectorX qe = VectorX::Zero(static_cast<int>(e.dofs.size()));
+    for (std::size_t a = 0; a < e.dofs.size(); ++a) {
+      if (e.dofs[a] >= 0) qe(a) = result.deflection(e.dofs[a]);
+    }
+    result.element_forces.push_back(e.stiffness * qe);
+  }
+  result.summary.counters["num_dofs"] = n;
+  result.summary.counters["rigid_modes"] = result.num_rigid_modes;
+  result.summary.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace geardyn

@@ -1,0 +1,369 @@
+#include "geardyn/system/system_builder.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SparseCholesky>
+#include <cmath>
+#include <sstream>
+
+#include "geardyn/common/check.hpp"
+#include "geardyn/system/workspace.hpp"
+#include "system_model_data.hpp"
+
+namespace geardyn {
+namespace {
+
+using Triplets = std::vector<Eigen::Triplet<double>>;
+
+constexpr double kSymmetryTol = 1e-10;  // relative to the largest entry
+constexpr double kPsdTol = 1e-10;       // smallest eigenvalue ≥ −tol·largest
+
+bool AllFinite(const MatrixX& a) { return a.allFinite(); }
+
+double Asymmetry(const MatrixX& a) {
+  const double scale = a.cwiseAbs().maxCoeff();
+  if (scale == 0.0) return 0.0;
+  return (a - a.transpose()).cwiseAbs().maxCoeff() / scale;
+}
+
+// Smallest eigenvalue relative to the largest |eigenvalue| (0 for a zero matrix).
+double RelativeMinEigenvalue(const MatrixX& a) {
+  if (a.size() == 0) return 0.0;
+  Eigen::SelfAdjointEigenSolver<MatrixX> eig(0.5 * (a + a.transpose()), Eigen::EigenvaluesOnly);
+  const double largest = eig.eigenvalues().cwiseAbs().maxCoeff();
+  if (largest == 0.0) return 0.0;
+  return eig.eigenvalues().minCoeff() / largest;
+}
+
+void CheckMatrix(const MatrixX& a, const std::string& what, bool psd) {
+  GEARDYN_THROW_UNLESS(AllFinite(a), what << ": non-finite entry");
+  const double asym = Asymmetry(a);
+  GEARDYN_THROW_UNLESS(asym <= kSymmetryTol, what << ": not symmetric (max |A − Aᵀ| / max |A| = "
+                                                  << asym << " > " << kSymmetryTol << ")");
+  if (psd) {
+    const double lmin = RelativeMinEigenvalue(a);
+    GEARDYN_THROW_UNLESS(lmin >= -kPsdTol, what << ": not positive semi-definite (smallest "
+                                                   "eigenvalue / largest = "
+                                                << lmin << ")");
+  }
+}
+
+void AddBlock(const MatrixX& a, const std::vector<int>& dofs, Triplets& t) {
+  for (int c = 0; c < a.cols(); ++c) {
+    if (dofs[c] < 0) continue;
+    for (int r = 0; r < a.rows(); ++r) {
+      if (dofs[r] < 0 || a(r, c) == 0.0) continue;
+      t.emplace_back(dofs[r], dofs[c], a(r, c));
+    }
+  }
+}
+
+SparseMatrix FromTriplets(int n, const Triplets& t) {
+  SparseMatrix a(n, n);
+  a.setFromTriplets(t.begin(), t.end());
+  a.makeCompressed();
+  return a;
+}
+
+SparseMatrix DenseToSparse(const MatrixX& a) {
+  SparseMatrix s = a.sparseView();
+  s.makeCompressed();
+  return s;
+}
+
+}  // namespace
+
+void SystemBuilder::CheckBody(BodyIndex b, const std::string& what) const {
+  GEARDYN_THROW_UNLESS(
+      b.value() >= 0 && b.value() < num_bodies(),
+      what << ": unknown body index " << b.value() << " (bodies: " << num_bodies() << ")");
+}
+
+std::optional<BodyIndex> SystemBuilder::FindBody(const std::string& name) const {
+  for (int b = 0; b < num_bodies(); ++b) {
+    if (bodies_[b].name == name) return BodyIndex(b);
+  }
+  return std::nullopt;
+}
+
+BodyIndex SystemBuilder::AddBody(const std::string& name, const Matrix6& mass,
+                                 const Vector3& position) {
+  GEARDYN_THROW_UNLESS(!name.empty(), "body " << num_bodies() << ": empty name");
+  GEARDYN_THROW_UNLESS(!FindBody(name), "body '" << name << "': duplicate name");
+  const std::string what = "body '" + name + "' mass";
+  CheckMatrix(mass, what, /*psd=*/true);
+  GEARDYN_THROW_UNLESS(position.allFinite(), "body '" << name << "' position: non-finite");
+  bodies_.push_back({name, mass, position});
+  return BodyIndex(num_bodies() - 1);
+}
+
+ElementIndex SystemBuilder::AddElement(const std::string& name, ElementKind kind,
+                                       const std::vector<BodyIndex>& bodies,
+                                       const MatrixX& stiffness, const MatrixX& damping,
+                                       const MatrixX& mass) {
+  const std::string what = std::string(ToString(kind)) + " '" + name + "'";
+  GEARDYN_THROW_UNLESS(!name.empty(), ToString(kind) << " " << elements_.size() << ": empty name");
+  for (const Element& e : elements_) {
+    GEARDYN_THROW_UNLESS(e.name != name, what << ": duplicate element name");
+  }
+  GEARDYN_THROW_UNLESS(bodies.size() == 1 || bodies.size() == 2,
+                       what << ": needs 1 (grounded) or 2 bodies, got " << bodies.size());
+  for (BodyIndex b : bodies) CheckBody(b, what);
+  GEARDYN_THROW_UNLESS(bodies.size() == 1 || bodies[0] != bodies[1],
+                       what << ": connects body '" << bodies_[bodies[0]].name << "' to itself");
+  const int size = kBodyDofs * static_cast<int>(bodies.size());
+  GEARDYN_THROW_UNLESS(stiffness.rows() == size && stiffness.cols() == size,
+                       what << " stiffness: size " << stiffness.rows() << "×" << stiffness.cols()
+                            << ", expected " << size << "×" << size);
+  CheckMatrix(stiffness, what + " stiffness", /*psd=*/true);
+  if (damping.size() > 0) {
+    GEARDYN_THROW_UNLESS(damping.rows() == size && damping.cols() == size,
+                         what << " damping: size " << damping.rows() << "×" << damping.cols()
+                              << ", expected " << size << "×" << size);
+    CheckMatrix(damping, what + " damping", /*psd=*/true);
+  }
+  if (mass.size() > 0) {
+    GEARDYN_THROW_UNLESS(mass.rows() == size && mass.cols() == size,
+                         what << " mass: size " << mass.rows() << "×" << mass.cols()
+                              << ", expected " << size << "×" << size);
+    CheckMatrix(mass, what + " mass", /*psd=*/true);
+  }
+  elements_.push_back({name, kind, bodies, stiffness, damping, mass});
+  return ElementIndex(static_cast<int>(elements_.size()) - 1);
+}
+
+MeshIndex SystemBuilder::AddMesh(const std::string& name, BodyIndex body_i, BodyIndex body_j,
+                                 const Matrix2x12& G, MeshCore core,
+                                 std::optional<double> equivalent_mass, double phase_ratio,
+                                 double phase_offset) {
+  const std::string what = "mesh '" + name + "'";
+  GEARDYN_THROW_UNLESS(!name.empty(), "mesh " << meshes_.size() << ": empty name");
+  for (const Mesh& m : meshes_) {
+    GEARDYN_THROW_UNLESS(m.name != name, what << ": duplicate mesh name");
+  }
+  CheckBody(body_i, what);
+  CheckBody(body_j, what);
+  GEARDYN_THROW_UNLESS(body_i != body_j,
+                       what << ": meshes body '" << bodies_[body_i].name << "' with itself");
+  GEARDYN_THROW_UNLESS(G.allFinite(), what << " G: non-finite entry");
+  if (const auto* nl = std::get_if<std::shared_ptr<const NonlinearMeshCore>>(&core)) {
+    GEARDYN_THROW_UNLESS(*nl != nullptr, what << ": null nonlinear core");
+    GEARDYN_THROW_UNLESS((*nl)->num_coordinates() == 12,
+                         what << ": nonlinear core with " << (*nl)->num_coordinates()
+                              << " coordinates; only the 12 of [q_i; q_j] are supported");
+  }
+  if (equivalent_mass) {
+    GEARDYN_THROW_UNLESS(
+        std::isfinite(*equivalent_mass) && *equivalent_mass > 0.0,
+        what << " equivalent_mass: must be finite and > 0, got " << *equivalent_mass << " kg");
+  }
+  GEARDYN_THROW_UNLESS(
+      std::isfinite(phase_ratio) && std::isfinite(phase_offset),
+      what << ": non-finite phase_ratio " << phase_ratio << " or phase_offset " << phase_offset);
+  meshes_.push_back(
+      {name, body_i, body_j, G, std::move(core), equivalent_mass, phase_ratio, phase_offset});
+  return MeshIndex(static_cast<int>(meshes_.size()) - 1);
+}
+
+void SystemBuilder::AddTorque(BodyIndex body, const Vector6& generalized_force,
+                              const std::string& name) {
+  const std::string label = name.empty() ? "load " + std::to_string(loads_.size()) : name;
+  CheckBody(body, "load '" + label + "'");
+  GEARDYN_THROW_UNLESS(generalized_force.allFinite(), "load '" << label << "': non-finite value");
+  loads_.push_back({label, body, generalized_force});
+}
+
+void SystemBuilder::SetRayleighDamping(double alpha, double beta) {
+  GEARDYN_THROW_UNLESS(std::isfinite(alpha) && alpha >= 0.0,
+                       "rayleigh alpha: must be finite and ≥ 0, got " << alpha);
+  GEARDYN_THROW_UNLESS(std::isfinite(beta) && beta >= 0.0,
+                       "rayleigh beta: must be finite and ≥ 0, got " << beta);
+  GEARDYN_THROW_UNLESS(!has_modal_, "rayleigh damping: modal damping ratio already set");
+  rayleigh_alpha_ = alpha;
+  rayleigh_beta_ = beta;
+  has_rayleigh_ = true;
+}
+
+void SystemBuilder::SetModalDampingRatio(double zeta) {
+  GEARDYN_THROW_UNLESS(std::isfinite(zeta) && zeta >= 0.0 && zeta < 1.0,
+                       "modal damping ratio: must be in [0, 1), got " << zeta);
+  GEARDYN_THROW_UNLESS(!has_rayleigh_, "modal damping ratio: Rayleigh damping already set");
+  modal_zeta_ = zeta;
+  has_modal_ = true;
+}
+
+SystemModel SystemBuilder::Build() const {
+  GEARDYN_THROW_UNLESS(!bodies_.empty(), "system: no bodies");
+  auto data = std::make_shared<SystemModel::Data>();
+  data->id = internal::NextModelId();
+  std::vector<std::string> names;
+  for (const Body& b : bodies_) names.push_back(b.name);
+  data->dof_map = DofMap(names);
+  const int n = data->dof_map.num_dofs();
+
+  auto body_dofs = [](const std::vector<BodyIndex>& bodies) {
+    std::vector<int> dofs;
+    for (BodyIndex b : bodies) {
+      for (int c = 0; c < kBodyDofs; ++c) dofs.push_back(kBodyDofs * b.value() + c);
+    }
+    return dofs;
+  };
+
+  Triplets mass_t, stiffness_t, damping_t;
+  std::vector<bool> referenced(n, false);
+  for (int b = 0; b < num_bodies(); ++b) {
+    AddBlock(bodies_[b].mass, body_dofs({BodyIndex(b)}), mass_t);
+  }
+  for (const Element& e : elements_) {
+    SystemElement se;
+    se.name = e.name;
+    se.kind = e.kind;
+    se.bodies = e.bodies;
+    se.dofs = body_dofs(e.bodies);
+    se.stiffness = e.stiffness;
+    se.damping = e.damping.size() > 0 ? e.damping : MatrixX::Zero(se.dofs.size(), se.dofs.size());
+    se.mass = e.mass;
+    AddBlock(se.stiffness, se.dofs, stiffness_t);
+    AddBlock(se.damping, se.dofs, damping_t);
+    if (se.mass.size() > 0) AddBlock(se.mass, se.dofs, mass_t);
+    for (std::size_t k = 0; k < se.dofs.size(); ++k) {
+      if (se.stiffness.row(k).cwiseAbs().maxCoeff() > 0.0 ||
+          se.damping.row(k).cwiseAbs().maxCoeff() > 0.0) {
+        referenced[se.dofs[k]] = true;
+      }
+    }
+    data->elements.push_back(std::move(se));
+  }
+  data->mass = FromTriplets(n, mass_t);
+  data->stiffness0 = FromTriplets(n, stiffness_t);
+  data->damping0 = FromTriplets(n, damping_t);
+
+  // Meshes: DOFs, resolved damping, mean core.
+  for (const Mesh& m : meshes_) {
+    SystemMesh sm{.name = m.name, .body_i = m.body_i, .body_j = m.body_j, .core = m.core};
+    const std::vector<int> dofs = body_dofs({m.body_i, m.body_j});
+    for (int k = 0; k < 12; ++k) {
+      sm.dofs[k] = dofs[k];
+      if (m.G.col(k).cwiseAbs().maxCoeff() > 0.0) referenced[dofs[k]] = true;
+    }
+    sm.G = m.G;
+    sm.phase_ratio = m.phase_ratio;
+    sm.phase_offset = m.phase_offset;
+    sm.mean_core_stiffness = internal::CalcMeanCoreStiffness(m.core);
+    data->meshes.push_back(std::move(sm));
+  }
+
+  // Mass: every DOF must carry mass; then positive definite.
+  const VectorX mass_diag = MatrixX(data->mass).diagonal();
+  for (int i = 0; i < n; ++i) {
+    GEARDYN_THROW_UNLESS(
+        mass_diag(i) > 0.0,
+        "DOF " << data->dof_map.dof_name(i) << ": zero mass"
+               << (referenced[i] ? " (referenced by an element or mesh; add inertia or a "
+                                   "consistent element mass)"
+                                 : " and no element or mesh references it (unreferenced DOF "
+                                   "with zero mass: give the body inertia or remove the DOF)"));
+  }
+  {
+    Eigen::SimplicialLLT<SparseMatrix> llt(data->mass);
+    GEARDYN_THROW_UNLESS(llt.info() == Eigen::Success,
+                         "system mass matrix: not positive definite (check the bodies' 6×6 "
+                         "mass matrices and element masses)");
+  }
+
+  // Mesh equivalent masses and damping coefficients.
+  for (std::size_t k = 0; k < meshes_.size(); ++k) {
+    SystemMesh& sm = data->meshes[k];
+    const Mesh& m = meshes_[k];
+    double m_e = m.equivalent_mass.value_or(0.0);
+    if (!m.equivalent_mass) {
+      MatrixX m_pair(12, 12);
+      for (int a = 0; a < 12; ++a) {
+        for (int b = 0; b < 12; ++b) m_pair(a, b) = data->mass.coeff(sm.dofs[a], sm.dofs[b]);
+      }
+      const Eigen::Matrix<double, 12, 1> g = sm.G.row(0).transpose();
+      const double flexibility = g.dot(m_pair.ldlt().solve(g));
+      m_e = (std::isfinite(flexibility) && flexibility > 0.0) ? 1.0 / flexibility : 0.0;
+    }
+    sm.equivalent_mass = m_e;
+    sm.damping_coefficient = std::visit(
+        [&](const auto& core) -> double {
+          using T = std::decay_t<decltype(core)>;
+          if constexpr (std::is_same_v<T, std::shared_ptr<const NonlinearMeshCore>>) {
+            return 0.0;
+          } else {
+            if (core.damping().kind != MeshDamping::Kind::kRatio) {
+              return ResolveDampingCoefficient(core, 1.0);
+            }
+            GEARDYN_THROW_UNLESS(m_e > 0.0, "mesh '" << m.name
+                                                     << "': damping ratio needs a positive "
+                                                        "equivalent mass, got "
+                                                     << m_e << " kg");
+            return ResolveDampingCoefficient(core, m_e);
+          }
+        },
+        sm.core);
+  }
+
+  // Loads.
+  data->load0 = VectorX::Zero(n);
+  for (const Load& l : loads_) {
+    SystemLoad sl;
+    sl.name = l.name;
+    sl.body = l.body;
+    sl.force = l.force;
+    for (int c = 0; c < kBodyDofs; ++c) {
+      sl.dofs[c] = kBodyDofs * l.body.value() + c;
+      data->load0(sl.dofs[c]) += l.force(c);
+    }
+    data->loads.push_back(std::move(sl));
+  }
+
+  internal::ComputeFacts(*data);  // blocks before Rayleigh/modal damping (which keep them)
+
+  if (has_rayleigh_ || has_modal_) {
+    data->rayleigh_alpha = rayleigh_alpha_;
+    data->rayleigh_beta = rayleigh_beta_;
+    data->modal_zeta = modal_zeta_;
+    const SystemModel undamped(data);  // shares data (copy-on-write below)
+    if (has_rayleigh_) {
+      SystemWorkspace ws(undamped, StorageKind::kSparse);
+      const SparseMatrix& kbar = AssembleMeanStiffnessSparse(undamped, ws);
+      SparseMatrix c = data->damping0 + rayleigh_alpha_ * data->mass + rayleigh_beta_ * kbar;
+      c.prune(0.0);
+      auto next = std::make_shared<SystemModel::Data>(*data);
+      next->damping0 = c;
+      data = next;
+    } else {
+      SystemWorkspace ws(undamped, StorageKind::kSparse);
+      const MatrixX kbar = MatrixX(AssembleMeanStiffnessSparse(undamped, ws));
+      const MatrixX mass = MatrixX(data->mass);
+      MatrixX c_modal = MatrixX::Zero(n, n);
+      for (const std::vector<int>& block : data->blocks) {
+        const int nb = static_cast<int>(block.size());
+        MatrixX kb(nb, nb), mb(nb, nb);
+        for (int a = 0; a < nb; ++a) {
+          for (int b = 0; b < nb; ++b) {
+            kb(a, b) = kbar(block[a], block[b]);
+            mb(a, b) = mass(block[a], block[b]);
+          }
+        }
+        Eigen::GeneralizedSelfAdjointEigenSolver<MatrixX> eig(0.5 * (kb + kb.transpose()), mb);
+        GEARDYN_THROW_UNLESS(eig.info() == Eigen::Success,
+                             "modal damping: eigen-decomposition of the mean system failed");
+        const VectorX omega = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+        const MatrixX mphi = mb * eig.eigenvectors();
+        const MatrixX cb = mphi * (2.0 * modal_zeta_ * omega).asDiagonal() * mphi.transpose();
+        for (int a = 0; a < nb; ++a) {
+          for (int b = 0; b < nb; ++b) c_modal(block[a], block[b]) = cb(a, b);
+        }
+      }
+      auto next = std::make_shared<SystemModel::Data>(*data);
+      next->damping0 = data->damping0 + DenseToSparse(0.5 * (c_modal + c_modal.transpose()));
+      data = next;
+    }
+    data->id = internal::NextModelId();
+  }
+  return SystemModel(std::move(data));
+}
+
+}  // namespace geardyn

@@ -1,0 +1,79 @@
+/// @file
+/// @brief MakeSystemModel: the one builder from a Scene to the SystemModel the analyses read
+/// (issue 4; spec 01 §1–§3; architecture §3.2).
+///
+/// **Bodies.** One rigid 6-DOF body per gear, named like the gear, mass matrix
+/// CalcRigidBodyMassMatrix with m = mass, J = inertia (polar) and I_d = transverse_inertia or, when
+/// absent, J/2 (the thin-disc value; a disc of width b has J/2 + m b²/12, which the scene can give
+/// explicitly). Axis +Z, centre of mass on the centre.
+///
+/// **Placement.** Gears are placed by a breadth-first walk over the meshes from the operating
+/// point's body (default: the first mesh's pinion), which sits at `options.origin`. The k-th mesh
+/// reached (k = 0, 1, …, in the walk order, which follows the scene's mesh order at each gear)
+/// puts its unplaced member at the centre distance a_w from the placed one along the line of
+/// centres γ_k = γ0 + (k mod 2)·π/2 (pinion → gear direction; γ0 = options.line_of_centres_angle),
+/// i.e. a train alternates 0°/90° steps (a staircase that cannot fold back onto itself), unless
+/// options.mesh_angles names the mesh. A mesh whose two members are both already placed (a closed
+/// loop) takes γ from their centres and must match a_w (InvalidInput otherwise). A gear reached
+/// only through a bearing between two gears (two gears on one shaft) is placed at the centre of
+/// the other (coaxial; the axial offset is not modelled); a gear connected to nothing is placed at
+/// the origin.
+///
+/// **Supports.** A [[bearing]] is the given 6×6 (K, C) acting at the body's centre: to ground
+/// directly, or between two bodies through CalcBearingMatrix at the body's centre (relative
+/// motion body − other).
+///
+/// **Meshes.** Frame from the pair geometry, the pinion's centre, γ and the drive sign s of
+/// BuildMeshCore (CalcMeshFrame); G = CalcMeshJacobian, restricted by CalcLevelJacobian for
+/// linear cores (the torsional level keeps only θz); the core from BuildMeshCore; the equivalent
+/// mass for a damping ratio computed by SystemBuilder from the bodies' masses; phase ratio =
+/// mesh frequency / first mesh's mesh frequency (Scene::MeshFrequencyHz; 1 when unknown), phase
+/// offset 0 (relative tooth phasing between meshes is not modelled yet).
+///
+/// **Loads.** External moments about +Z (θz): the operating-point torque on its body plus every
+/// [[load]] torque on its body; they all add (the scene gives them as applied torques, e.g. an
+/// input torque on the pinion and the balancing output torque on the wheel).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "geardyn/common/eigen_types.hpp"
+#include "geardyn/models/scene/scene.hpp"
+#include "geardyn/system/system_model.hpp"
+
+namespace geardyn {
+
+/// @brief Options of MakeSystemModel.
+struct SceneSystemOptions {
+  /// γ0 [rad]: line-of-centres angle of the first mesh (see the @file placement rule).
+  double line_of_centres_angle = 0.0;
+  /// Per-mesh γ [rad] overriding the rule, by mesh name.
+  std::map<std::string, double> mesh_angles;
+  /// Centre of the operating point's body [m].
+  Vector3 origin = Vector3::Zero();
+  /// Keep only x, y and θz of every body (planar literature models): the others held fixed.
+  bool planar = false;
+  /// False (with the field and value in `why`) on a non-finite angle or origin.
+  bool IsValid(std::string* why) const;
+};
+
+/// @brief The model with what the scene builder decided.
+struct SceneSystem {
+  SystemModel model;
+  std::vector<Vector3> centres;       ///< per gear (scene order = body order) [m]
+  std::vector<double> mesh_angles;    ///< γ per scene mesh [rad]
+  std::vector<int> drive_signs;       ///< s per scene mesh
+  std::vector<std::string> warnings;  ///< from BuildMeshCore (drive-sign fallbacks, ISO notes)
+};
+
+/// @brief Builds the SystemModel of a scene and reports the placement (see the @file).
+/// @throws InvalidInput on invalid options, an inconsistent closed loop, or as SystemBuilder and
+///   BuildMeshCore.
+SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& options = {});
+
+/// @brief BuildSceneSystem(scene, options).model.
+SystemModel MakeSystemModel(const Scene& scene, const SceneSystemOptions& options = {});
+
+}  // namespace geardyn

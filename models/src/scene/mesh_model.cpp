@@ -1,0 +1,166 @@
+// From a scene mesh to its MeshCore: ISO line load, drive sign, stiffness source, transmission
+// error channels and the requested level, all from one MeshCoreSource (spec 01 §4, §5).
+#include "geardyn/models/scene/mesh_model.hpp"
+
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "geardyn/common/check.hpp"
+#include "geardyn/models/mesh/transmission_error.hpp"
+#include "geardyn/models/scene/scene.hpp"
+#include "scene/mesh_model_reader.hpp"
+#include "scene/speed_ratios.hpp"
+
+namespace geardyn {
+namespace {
+
+// Gears reachable from `start` through the meshes other than `excluded` and the bearings that
+// tie two gears torsionally (stiffness(5, 5) > 0): the elements that carry torque.
+std::set<std::string, std::less<>> ReachableWithout(const Scene& scene, const std::string& start,
+                                                    const std::string& excluded) {
+  std::set<std::string, std::less<>> seen = {start};
+  std::deque<std::string> queue = {start};
+  const auto visit = [&](const std::string& a, const std::string& b, const std::string& from) {
+    if (from == a && seen.insert(b).second) queue.push_back(b);
+    if (from == b && seen.insert(a).second) queue.push_back(a);
+  };
+  while (!queue.empty()) {
+    const std::string from = queue.front();
+    queue.pop_front();
+    for (const MeshDef& m : scene.meshes) {
+      if (m.name != excluded) visit(m.pinion, m.gear, from);
+    }
+    for (const BearingDef& b : scene.bearings) {
+      if (!b.other.empty() && b.stiffness(5, 5) > 0.0) visit(b.body, b.other, from);
+    }
+  }
+  return seen;
+}
+
+MeshCoreLevel CoreLevel(MeshModelLevel level) {
+  switch (level) {
+    case MeshModelLevel::kCoupling4Dof:
+      return MeshCoreLevel::kCoupling4Dof;
+    case MeshModelLevel::kTorsional:
+      return MeshCoreLevel::kTorsional;
+    case MeshModelLevel::kBlankenshipSingh:
+    case MeshModelLevel::kMeanLti:
+    case MeshModelLevel::kNonlinearSlices:
+      break;
+  }
+  return MeshCoreLevel::kBlankenshipSingh;
+}
+
+// The level's core on the user's channels.
+LinearMeshCore MakeUserCore(const MeshDef& mesh) {
+  const MeshModelDef& model = mesh.model;
+  const std::string prefix = "mesh." + mesh.name;
+  GEARDYN_THROW_UNLESS(model.level != MeshModelLevel::kNonlinearSlices,
+                       prefix << ".parameters: user parameters cannot make the slice model (the "
+                                 "slices need the contact lines)");
+  GEARDYN_THROW_UNLESS(!model.stiffness_per_length &&
+                           !internal::HasUnloadedSeparation(model.modifications, model.errors),
+                       prefix << ".parameters: user parameters replace the contact-line model; "
+                                 "stiffness_per_length, modifications and errors are not used "
+                                 "with them");
+  const UserMeshParameters& p = *model.parameters;
+  const LinearMeshCore core(CoreLevel(model.level), p.stiffness, 0.5 * mesh.geometry.face_width,
+                            p.transmission_error, model.damping);
+  return model.level == MeshModelLevel::kMeanLti ? MakeMeanLinearMeshCore(core) : core;
+}
+
+// ε(θ) from the modifications and errors on the contact lines (none when they are all zero).
+std::optional<Coefficient> MakeTransmissionError(const ContactLineModel& lines,
+                                                 const MeshModelDef& model, ToothErrors errors) {
+  if (!internal::HasUnloadedSeparation(model.modifications, errors)) return std::nullopt;
+  const TransmissionErrorModel te(lines, model.modifications, errors);
+  const MeshCoefficientOptions& options = model.core_options.coefficient;
+  if (options.form == MeshCoefficientForm::kFourier) {
+    const int per_mesh =
+        options.num_terms > 0 ? options.num_terms : (options.num_samples + 1) / 2 - 1;
+    const std::int64_t terms = static_cast<std::int64_t>(per_mesh) * te.period_meshes();
+    GEARDYN_THROW_UNLESS(terms <= std::numeric_limits<int>::max(),
+                         "fourier_terms: " << per_mesh << " harmonics per mesh cycle over "
+                                           << te.period_meshes() << " cycles is too many");
+    return MakeTransmissionErrorFourierCoefficient(te, static_cast<int>(terms),
+                                                   options.num_samples);
+  }
+  return MakeTransmissionErrorTableCoefficient(te, options.num_samples);
+}
+
+}  // namespace
+
+std::optional<double> MeshLineLoad(const Scene& scene, const MeshDef& mesh) {
+  const GearPairGeometry& g = mesh.geometry;
+  const std::string& body = scene.operating_point.body;
+  double radius = 0.0;
+  if (body == mesh.pinion) radius = g.pinion.reference_radius;
+  if (body == mesh.gear) radius = g.gear.reference_radius;
+  if (radius <= 0.0 || scene.operating_point.torque == 0.0) return std::nullopt;
+  return std::abs(scene.operating_point.torque) / radius / g.face_width;
+}
+
+int MeshDriveSign(const Scene& scene, const MeshDef& mesh, std::vector<std::string>* warnings) {
+  const OperatingPointDef& op = scene.operating_point;
+  const auto fallback = [&](const std::string& why) {
+    if (warnings != nullptr) {
+      warnings->push_back("mesh." + mesh.name + ": drive sign +1 assumed (" + why + ")");
+    }
+    return 1;
+  };
+  if (op.torque == 0.0) return fallback("the operating-point torque is 0: no loaded flank");
+  const auto reach = ReachableWithout(scene, op.body, mesh.name);
+  const bool pinion_side = reach.contains(mesh.pinion);
+  const bool gear_side = reach.contains(mesh.gear);
+  if (pinion_side && gear_side) {
+    return fallback(
+        "the mesh is in a closed loop joining both its sides to the operating-point "
+        "gear '" +
+        op.body + "': the power through it is not known");
+  }
+  if (!pinion_side && !gear_side) {
+    return fallback("not connected to the operating-point gear '" + op.body + "'");
+  }
+  const internal::SpeedRatios ratios = internal::CalcSpeedRatios(scene, op.body);
+  const auto it = ratios.ratio.find(mesh.pinion);
+  GEARDYN_DEMAND(it != ratios.ratio.end() && it->second != 0.0);
+  // T_p = ±T_r Ω_r / Ω_p: the torque the pinion transmits (power T_r Ω_r, + from the pinion side).
+  const double pinion_torque = (pinion_side ? 1.0 : -1.0) * op.torque / it->second;
+  return pinion_torque > 0.0 ? 1 : -1;
+}
+
+BuiltMeshCore BuildMeshCore(const Scene& scene, const MeshDef& mesh) {
+  const MeshModelDef& model = mesh.model;
+  std::vector<std::string> warnings;
+  const int drive_sign = MeshDriveSign(scene, mesh, &warnings);
+  if (model.parameters) {
+    return {MakeUserCore(mesh), std::nullopt, drive_sign, std::move(warnings)};
+  }
+
+  MeshStiffnessSource stiffness = IsoStiffnessSource{};
+  if (model.stiffness_per_length) {
+    stiffness = StiffnessPerUnitLength{*model.stiffness_per_length};
+  } else {
+    std::get<IsoStiffnessSource>(stiffness).options.line_load = MeshLineLoad(scene, mesh);
+  }
+  MeshCoreSource source = MakeMeshCoreSource(mesh.geometry, stiffness, drive_sign);
+  for (const std::string& w : source.warnings) warnings.push_back("mesh." + mesh.name + ": " + w);
+  source.damping = model.damping;
+  ToothErrors errors = model.errors;
+  if (errors.pinion_teeth == 0) errors.pinion_teeth = scene.gear(mesh.pinion).blank.teeth;
+  if (errors.gear_teeth == 0) errors.gear_teeth = scene.gear(mesh.gear).blank.teeth;
+  source.transmission_error = MakeTransmissionError(source.contact_lines, model, errors);
+
+  MeshCoreOptions options = model.core_options;
+  options.level = model.level;
+  MeshCore core = MakeMeshCore(source, options);
+  return {std::move(core), std::move(source.contact_lines), drive_sign, std::move(warnings)};
+}
+
+}  // namespace geardyn

@@ -1,0 +1,201 @@
+#include "geardyn/models/system/scene_system.hpp"
+
+#include <cmath>
+#include <deque>
+#include <numbers>
+#include <optional>
+#include <sstream>
+
+#include "geardyn/common/check.hpp"
+#include "geardyn/models/elements/bearing.hpp"
+#include "geardyn/models/elements/rigid_body.hpp"
+#include "geardyn/models/mesh/mesh_frame.hpp"
+#include "geardyn/models/mesh/mesh_jacobian.hpp"
+#include "geardyn/models/scene/mesh_model.hpp"
+#include "geardyn/system/system_builder.hpp"
+
+namespace geardyn {
+namespace {
+
+constexpr double kLoopTol = 1e-9;  // relative centre-distance mismatch accepted in a closed loop
+
+int GearIndex(const Scene& scene, const std::string& name) {
+  for (std::size_t g = 0; g < scene.gears.size(); ++g) {
+    if (scene.gears[g].name == name) return static_cast<int>(g);
+  }
+  GEARDYN_THROW_UNLESS(false, "gear '" << name << "': unknown");
+  return -1;
+}
+
+}  // namespace
+
+bool SceneSystemOptions::IsValid(std::string* why) const {
+  std::ostringstream os;
+  if (!std::isfinite(line_of_centres_angle)) {
+    os << "line_of_centres_angle: must be finite, got " << line_of_centres_angle;
+  } else if (!origin.allFinite()) {
+    os << "origin: must be finite";
+  } else {
+    for (const auto& [name, angle] : mesh_angles) {
+      if (!std::isfinite(angle)) {
+        os << "mesh_angles." << name << ": must be finite, got " << angle;
+        break;
+      }
+    }
+  }
+  if (os.str().empty()) return true;
+  if (why != nullptr) *why = os.str();
+  return false;
+}
+
+SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& options) {
+  std::string why;
+  GEARDYN_THROW_UNLESS(options.IsValid(&why), why);
+  GEARDYN_THROW_UNLESS(!scene.gears.empty(), "scene: no gears");
+  const int num_gears = static_cast<int>(scene.gears.size());
+  const int num_meshes = static_cast<int>(scene.meshes.size());
+  for (const auto& [name, angle] : options.mesh_angles) {
+    bool found = false;
+    for (const MeshDef& m : scene.meshes) found = found || m.name == name;
+    GEARDYN_THROW_UNLESS(found, "mesh_angles." << name << ": no mesh of that name");
+  }
+
+  SceneSystem out;
+  // ---- Placement: BFS from the operating point's body over meshes and two-body bearings.
+  std::string root_name = scene.operating_point.body;
+  if (root_name.empty()) root_name = num_meshes > 0 ? scene.meshes[0].pinion : scene.gears[0].name;
+  const int root = GearIndex(scene, root_name);
+  std::vector<std::optional<Vector3>> centre(num_gears);
+  std::vector<double> gamma(num_meshes, 0.0);
+  std::vector<bool> mesh_done(num_meshes, false);
+  centre[root] = options.origin;
+  std::deque<int> queue{root};
+  int walk = 0;
+  auto place = [&](int g, const Vector3& c) {
+    centre[g] = c;
+    queue.push_back(g);
+  };
+  while (!queue.empty()) {
+    const int g = queue.front();
+    queue.pop_front();
+    for (int k = 0; k < num_meshes; ++k) {
+      if (mesh_done[k]) continue;
+      const MeshDef& m = scene.meshes[k];
+      const int p = GearIndex(scene, m.pinion);
+      const int w = GearIndex(scene, m.gear);
+      if (p != g && w != g) continue;
+      mesh_done[k] = true;
+      const double a_w = m.geometry.center_distance;
+      if (centre[p] && centre[w]) {  // closed loop: γ from the placed centres
+        const Vector3 d = *centre[w] - *centre[p];
+        const double dist = std::hypot(d.x(), d.y());
+        GEARDYN_THROW_UNLESS(std::abs(dist - a_w) <= kLoopTol * a_w,
+                             "mesh '" << m.name << "': its gears are placed " << dist
+                                      << " m apart by the other meshes, but its centre distance "
+                                         "is "
+                                      << a_w << " m (closed loop)");
+        gamma[k] = std::atan2(d.y(), d.x());
+        continue;
+      }
+      const auto it = options.mesh_angles.find(m.name);
+      gamma[k] = it != options.mesh_angles.end()
+                     ? it->second
+                     : options.line_of_centres_angle + (walk % 2) * std::numbers::pi / 2.0;
+      ++walk;
+      const Vector3 step(a_w * std::cos(gamma[k]), a_w * std::sin(gamma[k]), 0.0);
+      if (centre[p]) {
+        place(w, *centre[p] + step);
+      } else {
+        place(p, *centre[w] - step);
+      }
+    }
+    for (const BearingDef& b : scene.bearings) {
+      if (b.other.empty()) continue;
+      const int a = GearIndex(scene, b.body);
+      const int o = GearIndex(scene, b.other);
+      if (a == g && !centre[o]) place(o, *centre[g]);
+      if (o == g && !centre[a]) place(a, *centre[g]);
+    }
+  }
+  for (int g = 0; g < num_gears; ++g) {
+    if (!centre[g]) centre[g] = options.origin;  // connected to nothing
+    out.centres.push_back(*centre[g]);
+  }
+
+  // ---- Bodies.
+  SystemBuilder builder;
+  std::vector<BodyIndex> body(num_gears);
+  for (int g = 0; g < num_gears; ++g) {
+    const GearDef& gear = scene.gears[g];
+    RigidBodyInertia inertia;
+    inertia.mass = gear.mass;
+    inertia.polar_inertia = gear.inertia;
+    inertia.diametral_inertia = gear.transverse_inertia.value_or(0.5 * gear.inertia);
+    body[g] = builder.AddBody(gear.name, CalcRigidBodyMassMatrix(inertia), out.centres[g]);
+  }
+
+  // ---- Bearings.
+  for (const BearingDef& b : scene.bearings) {
+    const int a = GearIndex(scene, b.body);
+    if (b.other.empty()) {
+      builder.AddElement(b.name, ElementKind::kBearing, {body[a]}, MatrixX(b.stiffness),
+                         MatrixX(b.damping));
+    } else {
+      const int o = GearIndex(scene, b.other);
+      const Vector3& ca = out.centres[a];
+      const Vector3& co = out.centres[o];
+      builder.AddElement(b.name, ElementKind::kBearing, {body[a], body[o]},
+                         MatrixX(CalcBearingMatrix(b.stiffness, ca, ca, co)),
+                         MatrixX(CalcBearingMatrix(b.damping, ca, ca, co)));
+    }
+  }
+
+  // ---- Meshes.
+  double reference_frequency = 0.0;
+  for (int k = 0; k < num_meshes; ++k) {
+    const MeshDef& m = scene.meshes[k];
+    const int p = GearIndex(scene, m.pinion);
+    const int w = GearIndex(scene, m.gear);
+    BuiltMeshCore built = BuildMeshCore(scene, m);
+    for (std::string& warning : built.warnings) out.warnings.push_back(std::move(warning));
+    const MeshFrame frame = CalcMeshFrame(m.geometry, out.centres[p], gamma[k], built.drive_sign);
+    Matrix2x12 G = CalcMeshJacobian(frame);
+    if (const auto* linear = std::get_if<LinearMeshCore>(&built.core)) {
+      G = CalcLevelJacobian(linear->level(), G);
+    }
+    double ratio = 1.0;
+    try {
+      const double f = scene.MeshFrequencyHz(m);
+      if (k == 0) reference_frequency = f;
+      if (reference_frequency > 0.0 && f > 0.0) ratio = f / reference_frequency;
+    } catch (const InvalidInput&) {
+      out.warnings.push_back("mesh '" + m.name +
+                             "': not connected to the operating point; phase ratio 1 assumed");
+    }
+    builder.AddMesh(m.name, body[p], body[w], G, std::move(built.core), std::nullopt, ratio, 0.0);
+    out.mesh_angles.push_back(gamma[k]);
+    out.drive_signs.push_back(built.drive_sign);
+  }
+
+  // ---- Loads (θz moments, all added).
+  if (scene.operating_point.torque != 0.0) {
+    Vector6 f = Vector6::Zero();
+    f(5) = scene.operating_point.torque;
+    builder.AddTorque(body[root], f, "operating_point");
+  }
+  for (const TorqueLoadDef& load : scene.loads) {
+    Vector6 f = Vector6::Zero();
+    f(5) = load.torque;
+    builder.AddTorque(body[GearIndex(scene, load.body)], f, load.name);
+  }
+
+  out.model = builder.Build();
+  if (options.planar) out.model = out.model.RestrictToPlanar();
+  return out;
+}
+
+SystemModel MakeSystemModel(const Scene& scene, const SceneSystemOptions& options) {
+  return BuildSceneSystem(scene, options).model;
+}
+
+}  // namespace geardyn
