@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The main job on a fresh machine: install dependencies, build geardyn (Release), and run it on the
-# built-in Kahraman–Blankenship rig, writing the results to ./results (or $GEARDYN_OUT).
+# built-in Kahraman–Blankenship rig (derived geometry and ISO stiffness; mesh parameters over one
+# mesh period), writing the results to ./results (or $GEARDYN_OUT).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/install-deps.sh"
@@ -11,4 +12,5 @@ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DGEARDYN_BUILD_TESTS=OF
 cmake --build "$build" --target geardyn_cli -j"$(nproc)"
 out="${GEARDYN_OUT:-$root/results}"
 "$build/apps/geardyn" info builtin:kahraman-blankenship-rig --out "$out" "$@"
+"$build/apps/geardyn" mesh builtin:kahraman-blankenship-rig --out "$out" "$@"
 echo "geardyn: results written to $out"

@@ -8,29 +8,15 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
+
+#include "support/cli_run.hpp"
 
 namespace geardyn::app {
 namespace {
 
-struct CliRun {
-  int code;
-  std::string out;
-  std::string err;
-};
-
-CliRun RunGeardyn(const std::vector<std::string>& args) {
-  std::ostringstream out, err;
-  const int code = RunCli(args, out, err);
-  return {code, out.str(), err.str()};
-}
-
-nlohmann::json RunJson(std::vector<std::string> args) {
-  args.push_back("--json");
-  const CliRun run = RunGeardyn(args);
-  EXPECT_EQ(run.code, kExitOk) << run.err;
-  return nlohmann::json::parse(run.out);
-}
+using test::CliRun;
+using test::RunGeardyn;
+using test::RunJson;
 
 // Closed form for a standard external spur pair (x = 0, h_a* = 1, α = 20°, a = m z): ε_α from the
 // tip and base radii and the path of contact (ISO 21771 §5.4), written here independently.

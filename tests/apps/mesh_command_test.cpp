@@ -7,31 +7,16 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "geardyn/cli.hpp"
+#include "support/cli_run.hpp"
 
 namespace geardyn::app {
 namespace {
 
-struct CliRun {
-  int code;
-  std::string out;
-  std::string err;
-};
-
-CliRun RunGeardyn(const std::vector<std::string>& args) {
-  std::ostringstream out, err;
-  const int code = RunCli(args, out, err);
-  return {code, out.str(), err.str()};
-}
-
-nlohmann::json RunJson(std::vector<std::string> args) {
-  args.push_back("--json");
-  const CliRun run = RunGeardyn(args);
-  EXPECT_EQ(run.code, kExitOk) << run.err;
-  return nlohmann::json::parse(run.out);
-}
+using test::CliRun;
+using test::RunGeardyn;
+using test::RunJson;
 
 // Reads a CSV written by the command: header + rows of numbers.
 std::vector<std::vector<double>> ReadCsv(const std::filesystem::path& path, std::string* header) {

@@ -110,11 +110,73 @@ void SparseMatrixOperator::Apply(const Eigen::Ref<const VectorX>& x, Eigen::Ref<
   y.noalias() = (*A_) * x;
 }
 
+// ------------------------------------------------------------------------ shared shift-solve
+
+namespace internal {
+
+template <class Matrix, class Ldlt, class Lu>
+bool ShiftSolveOperatorBase<Matrix, Ldlt, Lu>::RecordLdlt(const Ldlt& ldlt,
+                                                          ShiftFactorization factorization,
+                                                          const char* name) {
+  ++report_.num_factorizations;
+  const bool factored = ldlt.info() == Eigen::Success && ldlt.vectorD().allFinite();
+  report_.positive_definite = factored && (ldlt.vectorD().array() > 0.0).all();
+  if (factorization == ShiftFactorization::kLdlt) {
+    report_.used = ShiftFactorization::kLdlt;
+    if (!factored) {
+      ReportFailedFactorization(name, sigma_, "zero pivot", &report_);
+      return false;
+    }
+  } else if (report_.positive_definite) {
+    report_.used = ShiftFactorization::kLdlt;
+  }
+  return true;
+}
+
+template <class Matrix, class Ldlt, class Lu>
+void ShiftSolveOperatorBase<Matrix, Ldlt, Lu>::FinishFactorization(double norm1) {
+  const auto solve = [this](const VectorX& b, VectorX& x) {
+    if (report_.used == ShiftFactorization::kLdlt) {
+      x = ldlt_.solve(b);
+    } else {
+      x = lu_.solve(b);
+    }
+  };
+  geardyn::FinishReport(norm1, M_->rows(), sigma_, solve, &report_);
+}
+
+template <class Matrix, class Ldlt, class Lu>
+void ShiftSolveOperatorBase<Matrix, Ldlt, Lu>::Solve(const Eigen::Ref<const VectorX>& b,
+                                                     Eigen::Ref<VectorX> y) const {
+  GEARDYN_DEMAND(report_.ok);
+  GEARDYN_ASSERT(b.size() == rows() && y.size() == rows());
+  if (report_.used == ShiftFactorization::kLdlt) {
+    y = ldlt_.solve(b);
+  } else {
+    y = lu_.solve(b);
+  }
+}
+
+template <class Matrix, class Ldlt, class Lu>
+void ShiftSolveOperatorBase<Matrix, Ldlt, Lu>::Apply(const Eigen::Ref<const VectorX>& x,
+                                                     Eigen::Ref<VectorX> y) const {
+  GEARDYN_DEMAND(report_.ok);
+  GEARDYN_ASSERT(x.size() == rows() && y.size() == rows());
+  scratch_.noalias() = (*M_) * x;
+  Solve(scratch_, y);
+}
+
+template class ShiftSolveOperatorBase<MatrixX, Eigen::LDLT<MatrixX>, Eigen::PartialPivLU<MatrixX>>;
+template class ShiftSolveOperatorBase<SparseMatrix, Eigen::SimplicialLDLT<SparseMatrix>,
+                                      Eigen::SparseLU<SparseMatrix>>;
+
+}  // namespace internal
+
 // ------------------------------------------------------------------------ dense shift-solve
 
 DenseShiftSolveOperator::DenseShiftSolveOperator(const MatrixX& K, const MatrixX& M, double sigma,
                                                  ShiftFactorization factorization)
-    : M_(&M), sigma_(sigma), scratch_(M.rows()) {
+    : ShiftSolveOperatorBase(M, sigma) {
   CheckShiftInputs(K, M, sigma);
   const MatrixX A = K - sigma * M;
   const Eigen::Index n = A.rows();
@@ -126,62 +188,24 @@ DenseShiftSolveOperator::DenseShiftSolveOperator(const MatrixX& K, const MatrixX
   report_.used = ShiftFactorization::kLu;
   if (factorization != ShiftFactorization::kLu) {
     Eigen::LDLT<MatrixX> ldlt(A);  // kept only if chosen, so a rejected one frees its memory
-    ++report_.num_factorizations;
-    const bool factored = ldlt.info() == Eigen::Success && ldlt.vectorD().allFinite();
-    report_.positive_definite = factored && (ldlt.vectorD().array() > 0.0).all();
-    if (factorization == ShiftFactorization::kLdlt) {
-      report_.used = ShiftFactorization::kLdlt;
-      if (!factored) {
-        ReportFailedFactorization("LDLᵀ", sigma, "zero pivot", &report_);
-        return;
-      }
-    } else if (report_.positive_definite) {
-      report_.used = ShiftFactorization::kLdlt;
-    }
+    if (!RecordLdlt(ldlt, factorization, "LDLᵀ")) return;
     if (report_.used == ShiftFactorization::kLdlt) ldlt_ = std::move(ldlt);
   }
   if (report_.used == ShiftFactorization::kLu) {
     lu_.compute(A);
     ++report_.num_factorizations;
   }
-  const auto solve = [this](const VectorX& b, VectorX& x) {
-    if (report_.used == ShiftFactorization::kLdlt) {
-      x = ldlt_.solve(b);
-    } else {
-      x = lu_.solve(b);
-    }
-  };
-  FinishReport(norm1, n, sigma, solve, &report_);
-}
-
-void DenseShiftSolveOperator::Solve(const Eigen::Ref<const VectorX>& b,
-                                    Eigen::Ref<VectorX> y) const {
-  GEARDYN_DEMAND(report_.ok);
-  GEARDYN_ASSERT(b.size() == rows() && y.size() == rows());
-  if (report_.used == ShiftFactorization::kLdlt) {
-    y = ldlt_.solve(b);
-  } else {
-    y = lu_.solve(b);
-  }
-}
-
-void DenseShiftSolveOperator::Apply(const Eigen::Ref<const VectorX>& x,
-                                    Eigen::Ref<VectorX> y) const {
-  GEARDYN_DEMAND(report_.ok);
-  GEARDYN_ASSERT(x.size() == rows() && y.size() == rows());
-  scratch_.noalias() = (*M_) * x;
-  Solve(scratch_, y);
+  FinishFactorization(norm1);
 }
 
 // ------------------------------------------------------------------------ sparse shift-solve
 
 SparseShiftSolveOperator::SparseShiftSolveOperator(const SparseMatrix& K, const SparseMatrix& M,
                                                    double sigma, ShiftFactorization factorization)
-    : M_(&M), sigma_(sigma), scratch_(M.rows()) {
+    : ShiftSolveOperatorBase(M, sigma) {
   CheckShiftInputs(K, M, sigma);
   SparseMatrix A = K - sigma * M;
   A.makeCompressed();
-  const Eigen::Index n = A.rows();
   const Eigen::Map<const VectorX> values(A.valuePtr(), A.nonZeros());
   if (!values.allFinite()) {
     report_.message = "K − σM has non-finite entries";
@@ -196,18 +220,7 @@ SparseShiftSolveOperator::SparseShiftSolveOperator(const SparseMatrix& K, const 
   report_.used = ShiftFactorization::kLu;
   if (factorization != ShiftFactorization::kLu) {
     ldlt_.compute(A);
-    ++report_.num_factorizations;
-    const bool factored = ldlt_.info() == Eigen::Success && ldlt_.vectorD().allFinite();
-    report_.positive_definite = factored && (ldlt_.vectorD().array() > 0.0).all();
-    if (factorization == ShiftFactorization::kLdlt) {
-      report_.used = ShiftFactorization::kLdlt;
-      if (!factored) {
-        ReportFailedFactorization("SimplicialLDLT", sigma, "zero pivot", &report_);
-        return;
-      }
-    } else if (report_.positive_definite) {
-      report_.used = ShiftFactorization::kLdlt;
-    }
+    if (!RecordLdlt(ldlt_, factorization, "SimplicialLDLT")) return;
   }
   if (report_.used == ShiftFactorization::kLu) {
     lu_.analyzePattern(A);
@@ -218,33 +231,7 @@ SparseShiftSolveOperator::SparseShiftSolveOperator(const SparseMatrix& K, const 
       return;
     }
   }
-  const auto solve = [this](const VectorX& b, VectorX& x) {
-    if (report_.used == ShiftFactorization::kLdlt) {
-      x = ldlt_.solve(b);
-    } else {
-      x = lu_.solve(b);
-    }
-  };
-  FinishReport(norm1, n, sigma, solve, &report_);
-}
-
-void SparseShiftSolveOperator::Solve(const Eigen::Ref<const VectorX>& b,
-                                     Eigen::Ref<VectorX> y) const {
-  GEARDYN_DEMAND(report_.ok);
-  GEARDYN_ASSERT(b.size() == rows() && y.size() == rows());
-  if (report_.used == ShiftFactorization::kLdlt) {
-    y = ldlt_.solve(b);
-  } else {
-    y = lu_.solve(b);
-  }
-}
-
-void SparseShiftSolveOperator::Apply(const Eigen::Ref<const VectorX>& x,
-                                     Eigen::Ref<VectorX> y) const {
-  GEARDYN_DEMAND(report_.ok);
-  GEARDYN_ASSERT(x.size() == rows() && y.size() == rows());
-  scratch_.noalias() = (*M_) * x;
-  Solve(scratch_, y);
+  FinishFactorization(norm1);
 }
 
 }  // namespace geardyn

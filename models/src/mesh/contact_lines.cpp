@@ -14,6 +14,8 @@
 #include "geardyn/common/check.hpp"
 #include "geardyn/common/units.hpp"
 #include "geardyn/models/gear/gear_geometry.hpp"
+#include "polynomial_fourier_moments.hpp"
+#include "zone_of_action_checks.hpp"
 
 namespace geardyn {
 namespace {
@@ -59,39 +61,20 @@ double WrapMeshPhase(double theta) {
 
 // ----------------------------------------------------------- exact piecewise-polynomial series
 
+constexpr int kPolyNodes = 5;  // degree ≤ 4 in θ between breakpoints
+
 /// One piece [θ_mid − w, θ_mid + w] of the channels, q_c(τ) = Σ_r alpha(c, r) τ^r, θ = mid + w τ.
 struct PolyPiece {
   double mid = 0.0;
   double half_width = 0.0;
-  Eigen::Matrix<double, kNumMeshChannels, 5> alpha;
+  Eigen::Matrix<double, kNumMeshChannels, kPolyNodes> alpha;
 };
-
-constexpr int kPolyNodes = 5;  // degree ≤ 4 in θ between breakpoints
-
-/// Chebyshev nodes τ_i = cos((2i+1)π/10) and the inverse of their Vandermonde matrix.
-struct ChebyshevFit {
-  std::array<double, kPolyNodes> nodes{};
-  Eigen::Matrix<double, kPolyNodes, kPolyNodes> inverse_vandermonde;
-  ChebyshevFit() {
-    Eigen::Matrix<double, kPolyNodes, kPolyNodes> v;
-    for (int i = 0; i < kPolyNodes; ++i) {
-      nodes[i] = std::cos((2.0 * i + 1.0) * kPi / (2.0 * kPolyNodes));
-      for (int r = 0; r < kPolyNodes; ++r) v(i, r) = std::pow(nodes[i], r);
-    }
-    inverse_vandermonde = v.inverse();
-  }
-};
-
-const ChebyshevFit& Fit() {
-  static const ChebyshevFit fit;
-  return fit;
-}
 
 /// Pieces between consecutive breakpoints (cyclically), each fitted exactly.
 std::vector<PolyPiece> BuildPieces(const ContactLineModel& model) {
   std::vector<double> breaks = model.Breakpoints();
   if (breaks.empty()) breaks.push_back(0.0);
-  const ChebyshevFit& fit = Fit();
+  const internal::ChebyshevFit<kPolyNodes>& fit = internal::GetChebyshevFit<kPolyNodes>();
   std::vector<PolyPiece> pieces;
   pieces.reserve(breaks.size());
   Eigen::Matrix<double, kNumMeshChannels, kPolyNodes> values;
@@ -113,47 +96,6 @@ std::vector<PolyPiece> BuildPieces(const ContactLineModel& model) {
   return pieces;
 }
 
-/// M_r(z) = ∫_{−1}^{1} τ^r e^{−izτ} dτ for r = 0..4.
-std::array<Complex, kPolyNodes> MomentIntegrals(double z) {
-  // C_r = ∫_0^1 τ^r cos(zτ) dτ, S_r = ∫_0^1 τ^r sin(zτ) dτ.
-  std::array<double, kPolyNodes> c{}, s{};
-  if (std::abs(z) < 2.0) {
-    // Power series: C_r = Σ_k (−1)^k z^{2k}/(2k)!/(r+2k+1), S_r = Σ_k (−1)^k
-    // z^{2k+1}/(2k+1)!/(r+2k+2).
-    for (int r = 0; r < kPolyNodes; ++r) {
-      double term = 1.0;  // z^m/m!
-      double sum_c = 0.0, sum_s = 0.0;
-      for (int m = 0; m < 40; ++m) {
-        if (m > 0) term *= z / m;
-        const int k = m / 2;
-        const double sign = (k % 2 == 0) ? 1.0 : -1.0;
-        if (m % 2 == 0) {
-          sum_c += sign * term / (r + m + 1);
-        } else {
-          sum_s += sign * term / (r + m + 1);
-        }
-      }
-      c[r] = sum_c;
-      s[r] = sum_s;
-    }
-  } else {
-    // Integration by parts, stable for |z| ≥ 2 and r ≤ 4 (amplification ≤ r!/|z|^r ≤ 1.5):
-    // C_r = sin z/z − (r/z) S_{r−1}, S_r = −cos z/z + (r/z) C_{r−1}.
-    const double sz = std::sin(z), cz = std::cos(z);
-    c[0] = sz / z;
-    s[0] = (1.0 - cz) / z;
-    for (int r = 1; r < kPolyNodes; ++r) {
-      c[r] = sz / z - r / z * s[r - 1];
-      s[r] = -cz / z + r / z * c[r - 1];
-    }
-  }
-  std::array<Complex, kPolyNodes> m{};
-  for (int r = 0; r < kPolyNodes; ++r) {
-    m[r] = (r % 2 == 0) ? Complex(2.0 * c[r], 0.0) : Complex(0.0, -2.0 * s[r]);
-  }
-  return m;
-}
-
 /// c_n = (1/2π) ∫_0^{2π} f e^{−inθ} dθ of all channels, exact for the fitted pieces.
 Eigen::Matrix<Complex, kNumMeshChannels, 1> PieceSeriesCoefficient(
     const std::vector<PolyPiece>& pieces, int n) {
@@ -161,13 +103,8 @@ Eigen::Matrix<Complex, kNumMeshChannels, 1> PieceSeriesCoefficient(
       Eigen::Matrix<Complex, kNumMeshChannels, 1>::Zero();
   for (const PolyPiece& piece : pieces) {
     // ∫ q(τ) e^{−in(mid + wτ)} w dτ = w e^{−in·mid} Σ_r α_r M_r(n w).
-    const std::array<Complex, kPolyNodes> m = MomentIntegrals(n * piece.half_width);
-    const Complex phase = std::polar(piece.half_width, -n * piece.mid);
-    for (int c = 0; c < kNumMeshChannels; ++c) {
-      Complex acc(0.0, 0.0);
-      for (int r = 0; r < kPolyNodes; ++r) acc += piece.alpha(c, r) * m[r];
-      sum[c] += phase * acc;
-    }
+    internal::AddPieceTransform<kPolyNodes>(piece.alpha, piece.mid, piece.half_width,
+                                            static_cast<double>(n), &sum);
   }
   return sum / kTwoPi;
 }
@@ -319,19 +256,7 @@ MeshParameters MeshParametersFromChannels(double stiffness, double first_moment,
 
 ContactLineModel::ContactLineModel(const ZoneOfAction& zone, StiffnessProfile profile)
     : zone_(zone), profile_(std::move(profile)) {
-  GEARDYN_THROW_UNLESS(std::isfinite(zone.length) && zone.length > 0.0,
-                       "zone.length: must be finite and > 0 [m], got " << zone.length);
-  GEARDYN_THROW_UNLESS(std::isfinite(zone.face_width) && zone.face_width > 0.0,
-                       "zone.face_width: must be finite and > 0 [m], got " << zone.face_width);
-  GEARDYN_THROW_UNLESS(
-      std::isfinite(zone.transverse_base_pitch) && zone.transverse_base_pitch > 0.0,
-      "zone.transverse_base_pitch: must be finite and > 0 [m], got " << zone.transverse_base_pitch);
-  GEARDYN_THROW_UNLESS(
-      std::isfinite(zone.base_helix_angle) && std::abs(zone.base_helix_angle) < 0.5 * kPi,
-      "zone.base_helix_angle: must satisfy |beta_b| < pi/2 [rad], got " << zone.base_helix_angle);
-  GEARDYN_THROW_UNLESS(
-      std::isfinite(zone.pitch_point_offset),
-      "zone.pitch_point_offset: must be finite [m], got " << zone.pitch_point_offset);
+  internal::CheckZoneGeometry(zone);
   GEARDYN_THROW_UNLESS(zone.drive_sign == 1 || zone.drive_sign == -1,
                        "zone.drive_sign: must be +1 or -1, got " << zone.drive_sign);
   const double total = zone.transverse_contact_ratio() + zone.overlap_ratio();

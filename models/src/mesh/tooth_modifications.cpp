@@ -9,6 +9,7 @@
 
 #include "geardyn/common/check.hpp"
 #include "geardyn/common/units.hpp"
+#include "zone_of_action_checks.hpp"
 
 namespace geardyn {
 namespace {
@@ -78,19 +79,7 @@ UnloadedSeparation::UnloadedSeparation(const ZoneOfAction& zone,
                                        const ToothModifications& modifications,
                                        const ToothErrors& errors)
     : zone_(zone), modifications_(modifications), errors_(errors) {
-  GEARDYN_THROW_UNLESS(std::isfinite(zone.length) && zone.length > 0.0,
-                       "zone.length: must be finite and > 0 [m], got " << zone.length);
-  GEARDYN_THROW_UNLESS(std::isfinite(zone.face_width) && zone.face_width > 0.0,
-                       "zone.face_width: must be finite and > 0 [m], got " << zone.face_width);
-  GEARDYN_THROW_UNLESS(
-      std::isfinite(zone.transverse_base_pitch) && zone.transverse_base_pitch > 0.0,
-      "zone.transverse_base_pitch: must be finite and > 0 [m], got " << zone.transverse_base_pitch);
-  GEARDYN_THROW_UNLESS(
-      std::isfinite(zone.base_helix_angle) && std::abs(zone.base_helix_angle) < 0.5 * kPi,
-      "zone.base_helix_angle: must satisfy |beta_b| < pi/2 [rad], got " << zone.base_helix_angle);
-  GEARDYN_THROW_UNLESS(
-      std::isfinite(zone.pitch_point_offset),
-      "zone.pitch_point_offset: must be finite [m], got " << zone.pitch_point_offset);
+  internal::CheckZoneGeometry(zone);
   // The same expressions as ContactLineModel, so that both agree to the last bit on the ends.
   x_start_ = -0.5 * zone.length - zone.pitch_point_offset;
   x_end_ = x_start_ + zone.length;

@@ -14,6 +14,7 @@
 #include "geardyn/common/check.hpp"
 #include "geardyn/common/units.hpp"
 #include "geardyn/models/mesh/stiffness_core.hpp"
+#include "polynomial_fourier_moments.hpp"
 
 namespace geardyn {
 namespace {
@@ -50,28 +51,10 @@ struct LinePiece {
   Eigen::Matrix<double, kLineChannels, kPolyNodes> alpha;
 };
 
-struct ChebyshevFit {
-  std::array<double, kPolyNodes> nodes{};
-  Eigen::Matrix<double, kPolyNodes, kPolyNodes> inverse_vandermonde;
-  ChebyshevFit() {
-    Eigen::Matrix<double, kPolyNodes, kPolyNodes> v;
-    for (int i = 0; i < kPolyNodes; ++i) {
-      nodes[i] = std::cos((2.0 * i + 1.0) * kPi / (2.0 * kPolyNodes));
-      for (int r = 0; r < kPolyNodes; ++r) v(i, r) = std::pow(nodes[i], r);
-    }
-    inverse_vandermonde = v.inverse();
-  }
-};
-
-const ChebyshevFit& Fit() {
-  static const ChebyshevFit fit;
-  return fit;
-}
-
 std::vector<LinePiece> BuildLinePieces(const TransmissionErrorModel& model) {
   const std::vector<double> breaks = model.LineBreakpoints();
   const double p = model.contact_lines().zone().transverse_base_pitch;
-  const ChebyshevFit& fit = Fit();
+  const internal::ChebyshevFit<kPolyNodes>& fit = internal::GetChebyshevFit<kPolyNodes>();
   std::vector<LinePiece> pieces;
   for (size_t k = 0; k + 1 < breaks.size(); ++k) {
     LinePiece piece;
@@ -90,46 +73,6 @@ std::vector<LinePiece> BuildLinePieces(const TransmissionErrorModel& model) {
   return pieces;
 }
 
-/// M_r(z) = ∫_{−1}^{1} t^r e^{−izt} dt for r = 0..5.
-std::array<Complex, kPolyNodes> MomentIntegrals(double z) {
-  // C_r = ∫_0^1 t^r cos(zt) dt, S_r = ∫_0^1 t^r sin(zt) dt.
-  std::array<double, kPolyNodes> c{}, s{};
-  if (std::abs(z) < 2.0) {
-    // Power series C_r = Σ_k (−1)^k z^{2k}/(2k)!/(r+2k+1), S_r = Σ_k (−1)^k
-    // z^{2k+1}/(2k+1)!/(r+2k+2) (terms ≤ e^2, 40 terms reach round-off).
-    for (int r = 0; r < kPolyNodes; ++r) {
-      double term = 1.0;  // z^m / m!
-      double sum_c = 0.0, sum_s = 0.0;
-      for (int m = 0; m < 40; ++m) {
-        if (m > 0) term *= z / m;
-        const double sign = ((m / 2) % 2 == 0) ? 1.0 : -1.0;
-        if (m % 2 == 0) {
-          sum_c += sign * term / (r + m + 1);
-        } else {
-          sum_s += sign * term / (r + m + 1);
-        }
-      }
-      c[r] = sum_c;
-      s[r] = sum_s;
-    }
-  } else {
-    // Integration by parts, stable for |z| ≥ 2 and r ≤ 5 (amplification ≤ r!/|z|^r ≤ 3.75):
-    // C_r = sin z/z − (r/z) S_{r−1}, S_r = −cos z/z + (r/z) C_{r−1}.
-    const double sz = std::sin(z), cz = std::cos(z);
-    c[0] = sz / z;
-    s[0] = (1.0 - cz) / z;
-    for (int r = 1; r < kPolyNodes; ++r) {
-      c[r] = sz / z - r / z * s[r - 1];
-      s[r] = -cz / z + r / z * c[r - 1];
-    }
-  }
-  std::array<Complex, kPolyNodes> m{};
-  for (int r = 0; r < kPolyNodes; ++r) {
-    m[r] = (r % 2 == 0) ? Complex(2.0 * c[r], 0.0) : Complex(0.0, -2.0 * s[r]);
-  }
-  return m;
-}
-
 using LineTransform = Eigen::Matrix<Complex, kLineChannels, 1>;
 
 /// ĝ(ω) = ∫ g(τ) e^{−iωτ} dτ of the four line channels, exact for the fitted pieces.
@@ -137,13 +80,7 @@ LineTransform CalcLineTransform(const std::vector<LinePiece>& pieces, double ome
   LineTransform sum = LineTransform::Zero();
   for (const LinePiece& piece : pieces) {
     // ∫ q(t) e^{−iω(mid + w t)} w dt = w e^{−iω·mid} Σ_r α_r M_r(ω w).
-    const std::array<Complex, kPolyNodes> m = MomentIntegrals(omega * piece.half_width);
-    const Complex phase = std::polar(piece.half_width, -omega * piece.mid);
-    for (int c = 0; c < kLineChannels; ++c) {
-      Complex acc(0.0, 0.0);
-      for (int r = 0; r < kPolyNodes; ++r) acc += piece.alpha(c, r) * m[r];
-      sum[c] += phase * acc;
-    }
+    internal::AddPieceTransform<kPolyNodes>(piece.alpha, piece.mid, piece.half_width, omega, &sum);
   }
   return sum;
 }

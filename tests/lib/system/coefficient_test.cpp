@@ -15,37 +15,7 @@
 #include "geardyn/common/units.hpp"
 #include "support/expect_throws.hpp"
 #include "support/matrix_compare.hpp"
-
-// ---------------------------------------------------------------- allocation counter
-// Eigen's EIGEN_RUNTIME_NO_MALLOC only checks code compiled in this file, not the library, so the
-// C allocator itself is interposed (glibc): every malloc/calloc/realloc of the process, including
-// Eigen's aligned_malloc and operator new, is counted while counting is switched on.
-#if defined(__GLIBC__)
-extern "C" {
-void* __libc_malloc(size_t size);  // NOLINT(bugprone-reserved-identifier)
-void* __libc_calloc(size_t count, size_t size);
-void* __libc_realloc(void* ptr, size_t size);
-}
-namespace {
-bool g_counting = false;
-long g_allocations = 0;
-}  // namespace
-extern "C" {
-void* malloc(size_t size) noexcept {
-  if (g_counting) ++g_allocations;
-  return __libc_malloc(size);
-}
-void* calloc(size_t count, size_t size) noexcept {
-  if (g_counting) ++g_allocations;
-  return __libc_calloc(count, size);
-}
-void* realloc(void* ptr, size_t size) noexcept {
-  if (g_counting) ++g_allocations;
-  return __libc_realloc(ptr, size);
-}
-}
-#define GEARDYN_HAVE_ALLOCATION_COUNTER 1
-#endif
+#include "support/no_malloc.hpp"
 
 namespace geardyn {
 namespace {
@@ -385,7 +355,7 @@ TEST(CoefficientTest, InvalidInputThrowsNamingTheField) {
 }
 
 TEST(CoefficientTest, EvaluateDoesNotAllocate) {
-#if defined(GEARDYN_HAVE_ALLOCATION_COUNTER)
+#if GEARDYN_HAVE_ALLOCATION_COUNTER
   VectorX bp(3);
   bp << 0.5, 2.0, 4.0;
   const std::vector<Coefficient> coefs = {
@@ -397,23 +367,21 @@ TEST(CoefficientTest, EvaluateDoesNotAllocate) {
   VectorX out(3);
   Eigen::Matrix<double, 8, 1> fixed;
   double sink = 0.0;
-  g_allocations = 0;
-  g_counting = true;
-  for (const Coefficient& c : coefs) {
-    for (double t = -10.0; t < 10.0; t += 0.1) {
-      Evaluate(c, t, out);
-      Evaluate(c, t, fixed.segment<3>(2));  // any contiguous buffer of the right size
-      sink += out[0] + fixed[2];
+  const long allocations = test::CountAllocations([&] {
+    for (const Coefficient& c : coefs) {
+      for (double t = -10.0; t < 10.0; t += 0.1) {
+        Evaluate(c, t, out);
+        Evaluate(c, t, fixed.segment<3>(2));  // any contiguous buffer of the right size
+        sink += out[0] + fixed[2];
+      }
     }
-  }
-  g_counting = false;
-  EXPECT_EQ(g_allocations, 0);
+  });
+  EXPECT_EQ(allocations, 0);
   EXPECT_TRUE(std::isfinite(sink));
   // The counter works: an Eigen allocation is seen.
-  g_counting = true;
-  VectorX v = VectorX::Ones(1000);
-  g_counting = false;
-  EXPECT_GE(g_allocations, 1);
+  VectorX v;
+  const long eigen_allocations = test::CountAllocations([&] { v = VectorX::Ones(1000); });
+  EXPECT_GE(eigen_allocations, 1);
   EXPECT_EQ(v.size(), 1000);
 #else
   GTEST_SKIP() << "allocation counter needs glibc";

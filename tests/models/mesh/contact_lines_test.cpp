@@ -14,64 +14,25 @@
 #include "geardyn/common/errors.hpp"
 #include "geardyn/common/units.hpp"
 #include "geardyn/models/gear/gear_geometry.hpp"
+#include "support/contact_zones.hpp"
 #include "support/expect_throws.hpp"
-
-// Allocation counter (glibc): see tests/lib/system/coefficient_test.cpp for why the C allocator
-// is interposed instead of using EIGEN_RUNTIME_NO_MALLOC.
-#if defined(__GLIBC__)
-extern "C" {
-void* __libc_malloc(size_t size);  // NOLINT(bugprone-reserved-identifier)
-void* __libc_calloc(size_t count, size_t size);
-void* __libc_realloc(void* ptr, size_t size);
-}
-namespace {
-bool g_counting = false;
-long g_allocations = 0;
-}  // namespace
-extern "C" {
-void* malloc(size_t size) noexcept {
-  if (g_counting) ++g_allocations;
-  return __libc_malloc(size);
-}
-void* calloc(size_t count, size_t size) noexcept {
-  if (g_counting) ++g_allocations;
-  return __libc_calloc(count, size);
-}
-void* realloc(void* ptr, size_t size) noexcept {
-  if (g_counting) ++g_allocations;
-  return __libc_realloc(ptr, size);
-}
-}
-#define GEARDYN_HAVE_ALLOCATION_COUNTER 1
-#endif
+#include "support/no_malloc.hpp"
 
 namespace geardyn {
 namespace {
 
 using Complex = std::complex<double>;
 constexpr double kTwoPi = 2.0 * kPi;
-constexpr double kPitch = 0.0059;  // p_bt [m] (m_n ≈ 2 mm)
-constexpr double kFace = 0.024;    // B [m]
-constexpr double kK = 1.4e10;      // k [N/m²] (≈ c_γ = 14 N/(mm·µm))
+using test::kFace;
+using test::kK;
+using test::kPitch;
+using test::Zone;
 // Closed forms vs closed forms: a few ulps of O(10) additions.
 constexpr double kExact = 1e-12;
 // Brute-force quadrature with M midpoint samples per line: each clipped end errs by ≤ one sample,
 // so the relative error is O(lines/M); M = 20000 → ~1e-4.
 constexpr int kBruteSamples = 20000;
 constexpr double kBruteTol = 5e-4;
-
-/// A zone with the given contact ratios: g_α = ε_α p_bt, tan β_b = ε_β p_bt / B.
-ZoneOfAction Zone(double eps_alpha, double eps_beta, double offset = 0.0, int drive_sign = 1,
-                  double beta_sign = 1.0) {
-  ZoneOfAction z;
-  z.length = eps_alpha * kPitch;
-  z.face_width = kFace;
-  z.transverse_base_pitch = kPitch;
-  z.base_helix_angle = beta_sign * std::atan(eps_beta * kPitch / kFace);
-  z.pitch_point_offset = offset;
-  z.drive_sign = drive_sign;
-  return z;
-}
 
 struct BruteSums {
   double length = 0.0, k = 0.0, k_sigma = 0.0, k_sigma2 = 0.0;
@@ -541,20 +502,19 @@ TEST(ContactLinesTest, InvalidInputThrowsNamingTheField) {
 }
 
 TEST(ContactLinesTest, CalcChannelsDoesNotAllocate) {
-#if defined(GEARDYN_HAVE_ALLOCATION_COUNTER)
+#if GEARDYN_HAVE_ALLOCATION_COUNTER
   const double g = 1.55 * kPitch;
   const ContactLineModel model(
       Zone(1.55, 1.3), StiffnessProfile::PiecewiseLinear({0.0, 0.5 * g, g}, {kK, 2 * kK, kK}));
   VectorX out(3);
   double sink = 0.0;
-  g_allocations = 0;
-  g_counting = true;
-  for (double t = -20.0; t < 20.0; t += 0.01) {
-    model.CalcChannels(t, out);
-    sink += out[0] + model.CalcMeshParameters(t).mu;
-  }
-  g_counting = false;
-  EXPECT_EQ(g_allocations, 0);
+  const long allocations = test::CountAllocations([&] {
+    for (double t = -20.0; t < 20.0; t += 0.01) {
+      model.CalcChannels(t, out);
+      sink += out[0] + model.CalcMeshParameters(t).mu;
+    }
+  });
+  EXPECT_EQ(allocations, 0);
   EXPECT_TRUE(std::isfinite(sink));
 #else
   GTEST_SKIP() << "allocation counter needs glibc";

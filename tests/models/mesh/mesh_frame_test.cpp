@@ -17,6 +17,7 @@
 #include "geardyn/common/units.hpp"
 #include "support/expect_throws.hpp"
 #include "support/matrix_compare.hpp"
+#include "support/mesh_scenes.hpp"
 
 namespace geardyn {
 namespace {
@@ -28,50 +29,8 @@ constexpr double kUnitTol = 64.0 * kEps;
 constexpr double kLengthTol = 1e3 * kEps;
 
 // ---------------------------------------------------------------------------------------------
-// Scenes: {external, internal} × {spur, right-hand, left-hand pinion} × {drive +1, −1} ×
-// {pinion at the origin with the gear on +X, arbitrary pinion centre and line-of-centres angle}.
-struct Scene {
-  std::string name;
-  MeshPlacement placement;
-};
-
-MeshPlacement MakePlacement(bool internal, HelixHand hand, int drive_sign, bool moved) {
-  MeshPlacement p;
-  p.internal = internal;
-  p.pinion_base_radius = internal ? 0.031 : 0.042;
-  p.gear_base_radius = internal ? 0.094 : 0.071;
-  p.operating_pressure_angle = DegToRad(internal ? 21.3 : 23.1);
-  p.base_helix_angle = hand == HelixHand::kNone ? 0.0 : DegToRad(internal ? 14.2 : 18.7);
-  p.pinion_hand = hand;
-  p.drive_sign = drive_sign;
-  const double gamma = moved ? 2.31 : 0.0;
-  p.pinion_center = moved ? Vector3(0.13, -0.21, 0.07) : Vector3::Zero();
-  const double radius_sum = internal ? p.gear_base_radius - p.pinion_base_radius
-                                     : p.pinion_base_radius + p.gear_base_radius;
-  const double C = radius_sum / std::cos(p.operating_pressure_angle);
-  p.gear_center = p.pinion_center + C * Vector3(std::cos(gamma), std::sin(gamma), 0.0);
-  return p;
-}
-
-std::vector<Scene> AllScenes() {
-  std::vector<Scene> scenes;
-  for (bool internal : {false, true}) {
-    for (HelixHand hand : {HelixHand::kNone, HelixHand::kRight, HelixHand::kLeft}) {
-      for (int s : {1, -1}) {
-        for (bool moved : {false, true}) {
-          const std::string hand_name = hand == HelixHand::kNone    ? "spur"
-                                        : hand == HelixHand::kRight ? "rh"
-                                                                    : "lh";
-          scenes.push_back({std::string(internal ? "internal_" : "external_") + hand_name +
-                                (s > 0 ? "_drive_pos" : "_drive_neg") +
-                                (moved ? "_moved" : "_origin"),
-                            MakePlacement(internal, hand, s, moved)});
-        }
-      }
-    }
-  }
-  return scenes;
-}
+// Scenes: the shared mesh scenes (support/mesh_scenes.hpp).
+using Scene = test::MeshScene;
 
 int HandSign(HelixHand hand) {
   return hand == HelixHand::kRight ? 1 : (hand == HelixHand::kLeft ? -1 : 0);
@@ -254,7 +213,7 @@ TEST_P(MeshFrameSceneTest, MirroringTheSceneFlipsTheHand) {
   EXPECT_MATRIX_NEAR(g.reference_point, M * f.reference_point, kLengthTol);
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, MeshFrameSceneTest, ::testing::ValuesIn(AllScenes()),
+INSTANTIATE_TEST_SUITE_P(Scenes, MeshFrameSceneTest, ::testing::ValuesIn(test::AllMeshScenes()),
                          [](const ::testing::TestParamInfo<Scene>& param_info) {
                            return param_info.param.name;
                          });
@@ -262,14 +221,14 @@ INSTANTIATE_TEST_SUITE_P(Scenes, MeshFrameSceneTest, ::testing::ValuesIn(AllScen
 TEST(MeshFrameTest, RightHandPinionWithPositiveDrivePushesTheGearTowardsMinusZ) {
   // The convention stated in mesh_frame.hpp, as a worm: a right-hand screw turned positively
   // about +Z is pushed towards +Z by the nut it drives, and pushes the nut towards −Z.
-  const MeshFrame f = CalcMeshFrame(MakePlacement(false, HelixHand::kRight, 1, false));
+  const MeshFrame f = CalcMeshFrame(test::MakeMeshPlacement(false, HelixHand::kRight, 1, false));
   EXPECT_LT(f.eta.z(), 0.0);  // force on the driven gear
   EXPECT_NEAR(f.eta.z(), -std::sin(f.base_helix_angle), kUnitTol);
 }
 
 TEST(MeshFrameTest, PinionAtOriginGearOnPlusXHasTheTextbookFrame) {
   // External spur pair, positive drive: ê = X, ê⊥ = Y, u = (cos φ, −sin φ), v = (sin φ, cos φ).
-  const MeshPlacement p = MakePlacement(false, HelixHand::kNone, 1, false);
+  const MeshPlacement p = test::MakeMeshPlacement(false, HelixHand::kNone, 1, false);
   const MeshFrame f = CalcMeshFrame(p);
   const double phi = p.operating_pressure_angle;
   EXPECT_MATRIX_NEAR(f.u, Vector3(std::cos(phi), -std::sin(phi), 0.0), kUnitTol);
@@ -281,7 +240,7 @@ TEST(MeshFrameTest, PinionAtOriginGearOnPlusXHasTheTextbookFrame) {
 }
 
 TEST(MeshFrameTest, FaceOffsetMovesTheReferencePointAxially) {
-  MeshPlacement p = MakePlacement(false, HelixHand::kRight, 1, true);
+  MeshPlacement p = test::MakeMeshPlacement(false, HelixHand::kRight, 1, true);
   const MeshFrame f0 = CalcMeshFrame(p);
   p.face_offset = 0.025;
   const MeshFrame f1 = CalcMeshFrame(p);
@@ -308,7 +267,8 @@ TEST(MeshFrameTest, GeometryOverloadPlacesTheGearOnTheLineOfCentres) {
       const Vector3 c_i(0.13, -0.21, 0.07);
       const double gamma = 2.31;
       const MeshFrame f = CalcMeshFrame(geometry, c_i, gamma, s);
-      const MeshFrame expected = CalcMeshFrame(MakePlacement(internal, HelixHand::kLeft, s, true));
+      const MeshFrame expected =
+          CalcMeshFrame(test::MakeMeshPlacement(internal, HelixHand::kLeft, s, true));
       const double a_i = geometry.pinion.base_radius;
       const double a_j = geometry.gear.base_radius;
       const double C =
@@ -334,33 +294,33 @@ TEST(MeshFrameTest, GeometryOverloadFallsBackToTheSpecHand) {
 // ---------------------------------------------------------------------------------------------
 // Bad input: InvalidInput naming the argument.
 TEST(MeshFrameTest, RejectsBadBaseRadii) {
-  MeshPlacement p = MakePlacement(false, HelixHand::kNone, 1, false);
+  MeshPlacement p = test::MakeMeshPlacement(false, HelixHand::kNone, 1, false);
   p.pinion_base_radius = 0.0;
   EXPECT_THROWS_MESSAGE(CalcMeshFrame(p), InvalidInput, "pinion_base_radius: must be positive");
   p.pinion_base_radius = -0.04;
   EXPECT_THROWS_MESSAGE(CalcMeshFrame(p), InvalidInput, "pinion_base_radius");
-  p = MakePlacement(false, HelixHand::kNone, 1, false);
+  p = test::MakeMeshPlacement(false, HelixHand::kNone, 1, false);
   p.gear_base_radius = -1.0;
   EXPECT_THROWS_MESSAGE(CalcMeshFrame(p), InvalidInput, "gear_base_radius: must be positive");
-  p = MakePlacement(true, HelixHand::kNone, 1, false);
+  p = test::MakeMeshPlacement(true, HelixHand::kNone, 1, false);
   p.gear_base_radius = 0.02;  // ring smaller than its pinion
   EXPECT_THROWS_MESSAGE(CalcMeshFrame(p), InvalidInput, "gear_base_radius: an internal gear");
 }
 
 TEST(MeshFrameTest, RejectsCoincidentOrTooCloseCentres) {
-  MeshPlacement p = MakePlacement(false, HelixHand::kNone, 1, true);
+  MeshPlacement p = test::MakeMeshPlacement(false, HelixHand::kNone, 1, true);
   p.gear_center = p.pinion_center + Vector3(0.0, 0.0, 0.3);  // same axis
   EXPECT_THROWS_MESSAGE(CalcMeshFrame(p), InvalidInput,
                         "gear_center: coincides with pinion_center");
   p.gear_center = p.pinion_center + Vector3(0.1, 0.0, 0.0);  // < a_i + a_j = 0.113
   EXPECT_THROWS_MESSAGE(CalcMeshFrame(p), InvalidInput, "gear_center: centre distance .* overlap");
-  p = MakePlacement(true, HelixHand::kNone, 1, false);
+  p = test::MakeMeshPlacement(true, HelixHand::kNone, 1, false);
   p.gear_center = p.pinion_center + Vector3(0.05, 0.0, 0.0);  // < a_j − a_i = 0.063
   EXPECT_THROWS_MESSAGE(CalcMeshFrame(p), InvalidInput, "gear_center: centre distance");
 }
 
 TEST(MeshFrameTest, RejectsCentresInconsistentWithThePressureAngle) {
-  MeshPlacement p = MakePlacement(false, HelixHand::kNone, 1, false);
+  MeshPlacement p = test::MakeMeshPlacement(false, HelixHand::kNone, 1, false);
   p.gear_center *= 1.01;
   EXPECT_THROWS_MESSAGE(CalcMeshFrame(p), InvalidInput,
                         "operating_pressure_angle: .* does not match");
@@ -369,22 +329,22 @@ TEST(MeshFrameTest, RejectsCentresInconsistentWithThePressureAngle) {
 TEST(MeshFrameTest, RejectsNonFiniteValues) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
-  MeshPlacement p = MakePlacement(false, HelixHand::kRight, 1, false);
+  MeshPlacement p = test::MakeMeshPlacement(false, HelixHand::kRight, 1, false);
   p.pinion_center.y() = nan;
   EXPECT_THROWS_MESSAGE(CalcMeshFrame(p), InvalidInput, "pinion_center: must be finite");
-  p = MakePlacement(false, HelixHand::kRight, 1, false);
+  p = test::MakeMeshPlacement(false, HelixHand::kRight, 1, false);
   p.gear_center.x() = inf;
   EXPECT_THROWS_MESSAGE(CalcMeshFrame(p), InvalidInput, "gear_center: must be finite");
-  p = MakePlacement(false, HelixHand::kRight, 1, false);
+  p = test::MakeMeshPlacement(false, HelixHand::kRight, 1, false);
   p.gear_base_radius = inf;
   EXPECT_THROWS_MESSAGE(CalcMeshFrame(p), InvalidInput, "gear_base_radius");
-  p = MakePlacement(false, HelixHand::kRight, 1, false);
+  p = test::MakeMeshPlacement(false, HelixHand::kRight, 1, false);
   p.operating_pressure_angle = nan;
   EXPECT_THROWS_MESSAGE(CalcMeshFrame(p), InvalidInput, "operating_pressure_angle");
-  p = MakePlacement(false, HelixHand::kRight, 1, false);
+  p = test::MakeMeshPlacement(false, HelixHand::kRight, 1, false);
   p.base_helix_angle = nan;
   EXPECT_THROWS_MESSAGE(CalcMeshFrame(p), InvalidInput, "base_helix_angle");
-  p = MakePlacement(false, HelixHand::kRight, 1, false);
+  p = test::MakeMeshPlacement(false, HelixHand::kRight, 1, false);
   p.face_offset = nan;
   EXPECT_THROWS_MESSAGE(CalcMeshFrame(p), InvalidInput, "face_offset");
   EXPECT_THROWS_MESSAGE(
@@ -397,18 +357,18 @@ TEST(MeshFrameTest, RejectsNonFiniteValues) {
 }
 
 TEST(MeshFrameTest, RejectsBadAnglesHandAndDriveSign) {
-  MeshPlacement p = MakePlacement(false, HelixHand::kRight, 1, false);
+  MeshPlacement p = test::MakeMeshPlacement(false, HelixHand::kRight, 1, false);
   p.drive_sign = 0;
   EXPECT_THROWS_MESSAGE(CalcMeshFrame(p), InvalidInput, "drive_sign: must be \\+1 or -1, got 0");
   p.drive_sign = 2;
   EXPECT_THROWS_MESSAGE(CalcMeshFrame(p), InvalidInput, "drive_sign: .* got 2");
-  p = MakePlacement(false, HelixHand::kRight, 1, false);
+  p = test::MakeMeshPlacement(false, HelixHand::kRight, 1, false);
   p.base_helix_angle = -0.1;
   EXPECT_THROWS_MESSAGE(CalcMeshFrame(p), InvalidInput, "base_helix_angle: must lie in");
-  p = MakePlacement(false, HelixHand::kRight, 1, false);
+  p = test::MakeMeshPlacement(false, HelixHand::kRight, 1, false);
   p.pinion_hand = HelixHand::kNone;
   EXPECT_THROWS_MESSAGE(CalcMeshFrame(p), InvalidInput, "pinion_hand: kNone");
-  p = MakePlacement(false, HelixHand::kNone, 1, false);
+  p = test::MakeMeshPlacement(false, HelixHand::kNone, 1, false);
   p.operating_pressure_angle = 0.0;
   EXPECT_THROWS_MESSAGE(CalcMeshFrame(p), InvalidInput, "operating_pressure_angle: must lie in");
   EXPECT_THROWS_MESSAGE(

@@ -17,6 +17,7 @@
 #include "geardyn/models/mesh/stiffness_core.hpp"
 #include "support/expect_throws.hpp"
 #include "support/matrix_compare.hpp"
+#include "support/mesh_scenes.hpp"
 
 namespace geardyn {
 namespace {
@@ -30,50 +31,13 @@ constexpr double kFdStep = 1e-6;
 constexpr double kFdTol = 1e-8;
 
 // ---------------------------------------------------------------------------------------------
-// Scenes: {external, internal} × {spur, right-hand, left-hand pinion} × {drive +1, −1} ×
-// {pinion at the origin with the gear on +X, arbitrary pinion centre and line-of-centres angle}.
-struct Scene {
-  std::string name;
-  MeshPlacement placement;
-};
-
-MeshPlacement MakePlacement(bool internal, HelixHand hand, int drive_sign, bool moved) {
-  MeshPlacement p;
-  p.internal = internal;
-  p.pinion_base_radius = internal ? 0.031 : 0.042;
-  p.gear_base_radius = internal ? 0.094 : 0.071;
-  p.operating_pressure_angle = DegToRad(internal ? 21.3 : 23.1);
-  p.base_helix_angle = hand == HelixHand::kNone ? 0.0 : DegToRad(internal ? 14.2 : 18.7);
-  p.pinion_hand = hand;
-  p.drive_sign = drive_sign;
-  const double gamma = moved ? 2.31 : 0.0;
-  p.pinion_center = moved ? Vector3(0.13, -0.21, 0.07) : Vector3::Zero();
-  const double radius_sum = internal ? p.gear_base_radius - p.pinion_base_radius
-                                     : p.pinion_base_radius + p.gear_base_radius;
-  const double C = radius_sum / std::cos(p.operating_pressure_angle);
-  p.gear_center = p.pinion_center + C * Vector3(std::cos(gamma), std::sin(gamma), 0.0);
-  return p;
-}
+// Scenes: the shared mesh scenes (support/mesh_scenes.hpp) and one more.
+using Scene = test::MeshScene;
 
 std::vector<Scene> AllScenes() {
-  std::vector<Scene> scenes;
-  for (bool internal : {false, true}) {
-    for (HelixHand hand : {HelixHand::kNone, HelixHand::kRight, HelixHand::kLeft}) {
-      for (int s : {1, -1}) {
-        for (bool moved : {false, true}) {
-          const std::string hand_name = hand == HelixHand::kNone    ? "spur"
-                                        : hand == HelixHand::kRight ? "rh"
-                                                                    : "lh";
-          scenes.push_back({std::string(internal ? "internal_" : "external_") + hand_name +
-                                (s > 0 ? "_drive_pos" : "_drive_neg") +
-                                (moved ? "_moved" : "_origin"),
-                            MakePlacement(internal, hand, s, moved)});
-        }
-      }
-    }
-  }
+  std::vector<Scene> scenes = test::AllMeshScenes();
   // A mesh whose mid face is off the centres' plane (one half of a double-helical pair).
-  MeshPlacement offset = MakePlacement(false, HelixHand::kRight, 1, true);
+  MeshPlacement offset = test::MakeMeshPlacement(false, HelixHand::kRight, 1, true);
   offset.face_offset = 0.021;
   scenes.push_back({"external_rh_drive_pos_face_offset", offset});
   return scenes;
@@ -212,7 +176,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, MeshJacobianSceneTest, ::testing::ValuesIn(AllS
                          });
 
 TEST(MeshJacobianTest, HasTheSpecLayout) {
-  const MeshFrame f = CalcMeshFrame(MakePlacement(false, HelixHand::kLeft, -1, true));
+  const MeshFrame f = CalcMeshFrame(test::MakeMeshPlacement(false, HelixHand::kLeft, -1, true));
   const Matrix2x12 G = CalcMeshJacobian(f);
   EXPECT_MATRIX_NEAR((G.block<1, 3>(0, 0).transpose()), f.eta, 0.0);
   EXPECT_MATRIX_NEAR((G.block<1, 3>(0, 6).transpose()), -f.eta, 0.0);
@@ -223,7 +187,7 @@ TEST(MeshJacobianTest, HasTheSpecLayout) {
 }
 
 TEST(MeshJacobianTest, BsMapRejectsBadHalfFaceWidth) {
-  const MeshFrame f = CalcMeshFrame(MakePlacement(false, HelixHand::kNone, 1, false));
+  const MeshFrame f = CalcMeshFrame(test::MakeMeshPlacement(false, HelixHand::kNone, 1, false));
   EXPECT_THROWS_MESSAGE(CalcBsRelativeDisplacementMap(f, 0.0), InvalidInput,
                         "half_face_width: must be positive");
   EXPECT_THROWS_MESSAGE(CalcBsRelativeDisplacementMap(f, std::numeric_limits<double>::quiet_NaN()),

@@ -19,6 +19,7 @@
 #include "geardyn/models/mesh/mesh_jacobian.hpp"
 #include "support/expect_throws.hpp"
 #include "support/matrix_compare.hpp"
+#include "support/mesh_scenes.hpp"
 
 namespace geardyn {
 namespace {
@@ -41,54 +42,12 @@ struct CoreData {
 };
 
 // ---------------------------------------------------------------------------------------------
-// Scenes: {external, internal} × {spur, right-hand, left-hand pinion} × {drive +1, −1} ×
-// {pinion at the origin with the gear on +X, arbitrary pinion centre and line-of-centres angle}.
-struct Scene {
-  std::string name;
-  MeshPlacement placement;
-};
-
-MeshPlacement MakePlacement(bool internal, HelixHand hand, int drive_sign, bool moved) {
-  MeshPlacement p;
-  p.internal = internal;
-  p.pinion_base_radius = internal ? 0.031 : 0.042;
-  p.gear_base_radius = internal ? 0.094 : 0.071;
-  p.operating_pressure_angle = DegToRad(internal ? 21.3 : 23.1);
-  p.base_helix_angle = hand == HelixHand::kNone ? 0.0 : DegToRad(internal ? 14.2 : 18.7);
-  p.pinion_hand = hand;
-  p.drive_sign = drive_sign;
-  const double gamma = moved ? 2.31 : 0.0;
-  p.pinion_center = moved ? Vector3(0.13, -0.21, 0.07) : Vector3::Zero();
-  const double radius_sum = internal ? p.gear_base_radius - p.pinion_base_radius
-                                     : p.pinion_base_radius + p.gear_base_radius;
-  const double C = radius_sum / std::cos(p.operating_pressure_angle);
-  p.gear_center = p.pinion_center + C * Vector3(std::cos(gamma), std::sin(gamma), 0.0);
-  return p;
-}
-
-std::vector<Scene> AllScenes() {
-  std::vector<Scene> scenes;
-  for (bool internal : {false, true}) {
-    for (HelixHand hand : {HelixHand::kNone, HelixHand::kRight, HelixHand::kLeft}) {
-      for (int s : {1, -1}) {
-        for (bool moved : {false, true}) {
-          const std::string hand_name = hand == HelixHand::kNone    ? "spur"
-                                        : hand == HelixHand::kRight ? "rh"
-                                                                    : "lh";
-          scenes.push_back({std::string(internal ? "internal_" : "external_") + hand_name +
-                                (s > 0 ? "_drive_pos" : "_drive_neg") +
-                                (moved ? "_moved" : "_origin"),
-                            MakePlacement(internal, hand, s, moved)});
-        }
-      }
-    }
-  }
-  return scenes;
-}
+// Scenes: the shared mesh scenes (support/mesh_scenes.hpp).
+using Scene = test::MeshScene;
 
 std::vector<Scene> SpurScenes() {
   std::vector<Scene> spur;
-  for (const Scene& scene : AllScenes()) {
+  for (const Scene& scene : test::AllMeshScenes()) {
     if (scene.placement.base_helix_angle == 0.0) spur.push_back(scene);
   }
   return spur;
@@ -96,7 +55,7 @@ std::vector<Scene> SpurScenes() {
 
 std::vector<Scene> HelicalScenes() {
   std::vector<Scene> helical;
-  for (const Scene& scene : AllScenes()) {
+  for (const Scene& scene : test::AllMeshScenes()) {
     if (scene.placement.base_helix_angle != 0.0) helical.push_back(scene);
   }
   return helical;
@@ -283,7 +242,7 @@ TEST_P(MeshStiffnessInvariantTest, RotatingOrReplacingTheSceneTransformsKMesh) {
 }
 
 INSTANTIATE_TEST_SUITE_P(ScenesAndLevels, MeshStiffnessInvariantTest,
-                         ::testing::Combine(::testing::ValuesIn(AllScenes()),
+                         ::testing::Combine(::testing::ValuesIn(test::AllMeshScenes()),
                                             ::testing::Values(MeshCoreLevel::kBlankenshipSingh,
                                                               MeshCoreLevel::kCoupling4Dof,
                                                               MeshCoreLevel::kTorsional)),
@@ -423,7 +382,7 @@ TEST_P(BsKoTest, KoEqualsGtK2GInTheScaledCoordinates) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, BsKoTest, ::testing::ValuesIn(AllScenes()),
+INSTANTIATE_TEST_SUITE_P(Scenes, BsKoTest, ::testing::ValuesIn(test::AllMeshScenes()),
                          [](const ::testing::TestParamInfo<Scene>& param_info) {
                            return param_info.param.name;
                          });
@@ -497,7 +456,7 @@ TEST(StiffnessCoreTest, CoreAndTransmissionErrorReproduceTheMeshEnergy) {
 }
 
 TEST(StiffnessCoreTest, MeshLoadIsGtK2Epsilon) {
-  const MeshFrame f = CalcMeshFrame(MakePlacement(true, HelixHand::kLeft, -1, true));
+  const MeshFrame f = CalcMeshFrame(test::MakeMeshPlacement(true, HelixHand::kLeft, -1, true));
   const CoreData d;
   const Matrix2x12 G = CalcMeshJacobian(f);
   const Matrix2 K2 = CalcStiffnessCore(d.K, d.h, d.mu, d.b);
@@ -528,7 +487,7 @@ TEST(StiffnessCoreTest, ReducedCoresUseOnlyTheNormalApproachInTheTransmissionErr
 }
 
 TEST(StiffnessCoreTest, DampingIsProportionalToTheStiffnessCore) {
-  const MeshFrame f = CalcMeshFrame(MakePlacement(false, HelixHand::kRight, 1, true));
+  const MeshFrame f = CalcMeshFrame(test::MakeMeshPlacement(false, HelixHand::kRight, 1, true));
   const CoreData d;
   const Matrix2x12 G = CalcMeshJacobian(f);
   const Matrix2 K2 = CalcStiffnessCore(d.K, d.h, d.mu, d.b);
@@ -542,7 +501,7 @@ TEST(StiffnessCoreTest, DampingIsProportionalToTheStiffnessCore) {
 }
 
 TEST(StiffnessCoreTest, TorsionalCoreIsTheThetaZBlockOfThe4DofLevel) {
-  for (const Scene& scene : AllScenes()) {
+  for (const Scene& scene : test::AllMeshScenes()) {
     const MeshPlacement& p = scene.placement;
     const MeshFrame f = CalcMeshFrame(p);
     const CoreData d;
@@ -618,7 +577,7 @@ TEST(StiffnessCoreTest, RejectsBadDampingTransmissionErrorAndTorsionalInput) {
   EXPECT_THROWS_MESSAGE(CalcTransmissionErrorPair(K2, 0.0, HUGE_VAL), InvalidInput,
                         "k_sigma_e_integral:");
   EXPECT_THROWS_MESSAGE(CalcTorsionalCore(Matrix2x12::Zero(), 1e8), InvalidInput, "G:");
-  const MeshFrame f = CalcMeshFrame(MakePlacement(false, HelixHand::kNone, 1, false));
+  const MeshFrame f = CalcMeshFrame(test::MakeMeshPlacement(false, HelixHand::kNone, 1, false));
   EXPECT_THROWS_MESSAGE(CalcTorsionalCore(CalcMeshJacobian(f), -1.0), InvalidInput, "K:");
 }
 

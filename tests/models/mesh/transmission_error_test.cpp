@@ -24,65 +24,26 @@
 
 #include "geardyn/common/errors.hpp"
 #include "geardyn/common/units.hpp"
+#include "support/contact_zones.hpp"
 #include "support/expect_throws.hpp"
-
-// Allocation counter (glibc): see tests/lib/system/coefficient_test.cpp for why the C allocator
-// is interposed instead of using EIGEN_RUNTIME_NO_MALLOC.
-#if defined(__GLIBC__)
-extern "C" {
-void* __libc_malloc(size_t size);  // NOLINT(bugprone-reserved-identifier)
-void* __libc_calloc(size_t count, size_t size);
-void* __libc_realloc(void* ptr, size_t size);
-}
-namespace {
-bool g_counting = false;
-long g_allocations = 0;
-}  // namespace
-extern "C" {
-void* malloc(size_t size) noexcept {
-  if (g_counting) ++g_allocations;
-  return __libc_malloc(size);
-}
-void* calloc(size_t count, size_t size) noexcept {
-  if (g_counting) ++g_allocations;
-  return __libc_calloc(count, size);
-}
-void* realloc(void* ptr, size_t size) noexcept {
-  if (g_counting) ++g_allocations;
-  return __libc_realloc(ptr, size);
-}
-}
-#define GEARDYN_HAVE_ALLOCATION_COUNTER 1
-#endif
+#include "support/no_malloc.hpp"
 
 namespace geardyn {
 namespace {
 
 using Complex = std::complex<double>;
 constexpr double kTwoPi = 2.0 * kPi;
-constexpr double kPitch = 0.0059;  // p_bt [m] (m_n ≈ 2 mm)
-constexpr double kFace = 0.024;    // B [m]
-constexpr double kK = 1.4e10;      // k [N/m²] (≈ c_γ = 14 N/(mm·µm))
-constexpr double kUm = 1e-6;       // [m]
+using test::kFace;
+using test::kK;
+using test::kPitch;
+using test::Zone;
+constexpr double kUm = 1e-6;  // [m]
 // Exact integrals vs closed forms: round-off of O(100) flops.
 constexpr double kExact = 1e-12;
 // Brute force: composite Simpson with 4000 panels per clipped line, blind to the kinks of e and
 // k; a panel holding a kink errs by O(h²·jump of the slope) → ~1e-8 relative.
 constexpr int kSimpsonPanels = 4000;
 constexpr double kBruteTol = 1e-7;
-
-/// A zone with the given contact ratios: g_α = ε_α p_bt, tan β_b = ε_β p_bt / B.
-ZoneOfAction Zone(double eps_alpha, double eps_beta, double offset = 0.0, int drive_sign = 1,
-                  double beta_sign = 1.0) {
-  ZoneOfAction z;
-  z.length = eps_alpha * kPitch;
-  z.face_width = kFace;
-  z.transverse_base_pitch = kPitch;
-  z.base_helix_angle = beta_sign * std::atan(eps_beta * kPitch / kFace);
-  z.pitch_point_offset = offset;
-  z.drive_sign = drive_sign;
-  return z;
-}
 
 /// Single-tooth-like profile k(r) over the path, continuous (0.6, 1, 1, 0.5)·k at r/g_α = (0,
 /// 0.3, 0.7, 1).
@@ -192,6 +153,30 @@ BruteSums BruteForce(const ZoneOfAction& z, const std::function<double(double)>&
   return out;
 }
 
+// Modifications and errors touching every channel: tip reliefs of both shapes, crowning, a lead
+// slope; pitch deviations and runout on both members (hunting period lcm(3, 4) = 12).
+ToothModifications SampleModifications() {
+  ToothModifications m;
+  m.pinion_tip_relief = {12 * kUm, 0.35 * kPitch, ReliefShape::kLinear};
+  m.gear_tip_relief = {9 * kUm, 0.45 * kPitch, ReliefShape::kParabolic};
+  m.lead_crowning = 5 * kUm;
+  m.lead_slope = -7 * kUm;
+  return m;
+}
+
+ToothErrors SampleErrors() {
+  ToothErrors err;
+  err.pinion_teeth = 3;
+  err.gear_teeth = 4;
+  err.pinion_pitch_deviations = {1.5 * kUm, -2.5 * kUm, 1.0 * kUm};
+  err.gear_pitch_deviations = {0.0, 2 * kUm, -1 * kUm, -1 * kUm};
+  err.pinion_runout = 4 * kUm;
+  err.pinion_runout_phase = 0.3;
+  err.gear_runout = 6 * kUm;
+  err.gear_runout_phase = 2.1;
+  return err;
+}
+
 // --------------------------------------------------------------------- brute-force quadrature
 
 struct BruteCase {
@@ -218,21 +203,9 @@ TEST_P(TransmissionErrorBruteForceTest, IntegralsMatchBruteForceQuadrature) {
   std::function<double(double)> k_of_roll = [&](double r) {
     return c.tooth_profile ? ToothProfileAt(ea, r) : kK;
   };
-  ToothModifications m;
-  m.pinion_tip_relief = {12 * kUm, 0.35 * kPitch, ReliefShape::kLinear};
-  m.gear_tip_relief = {9 * kUm, 0.45 * kPitch, ReliefShape::kParabolic};
+  ToothModifications m = SampleModifications();
   m.pinion_root_relief = {3 * kUm, 0.2 * kPitch, ReliefShape::kLinear};
-  m.lead_crowning = 5 * kUm;
-  m.lead_slope = -7 * kUm;
-  ToothErrors err;
-  err.pinion_teeth = 3;
-  err.gear_teeth = 4;
-  err.pinion_pitch_deviations = {1.5 * kUm, -2.5 * kUm, 1.0 * kUm};
-  err.gear_pitch_deviations = {0.0, 2 * kUm, -1 * kUm, -1 * kUm};
-  err.pinion_runout = 4 * kUm;
-  err.pinion_runout_phase = 0.3;
-  err.gear_runout = 6 * kUm;
-  err.gear_runout_phase = 2.1;
+  const ToothErrors err = SampleErrors();
   const TestSeparation truth(zone, m, err);
 
   for (const bool with_errors : {false, true}) {
@@ -569,20 +542,8 @@ MatrixXc TrapezoidDft(const TransmissionErrorModel& model, int samples, int num_
 
 TEST(TransmissionErrorTest, FourierCoefficientsAreExact) {
   // Helical channels are continuous with kinks: the trapezoidal DFT errs by O(h²) ≈ 1e-8.
-  ToothModifications m;
-  m.pinion_tip_relief = {12 * kUm, 0.35 * kPitch, ReliefShape::kLinear};
-  m.gear_tip_relief = {9 * kUm, 0.45 * kPitch, ReliefShape::kParabolic};
-  m.lead_crowning = 5 * kUm;
-  m.lead_slope = -7 * kUm;
-  ToothErrors err;
-  err.pinion_teeth = 3;
-  err.gear_teeth = 4;
-  err.pinion_pitch_deviations = {1.5 * kUm, -2.5 * kUm, 1.0 * kUm};
-  err.gear_pitch_deviations = {0.0, 2 * kUm, -1 * kUm, -1 * kUm};
-  err.pinion_runout = 4 * kUm;
-  err.pinion_runout_phase = 0.3;
-  err.gear_runout = 6 * kUm;
-  err.gear_runout_phase = 2.1;
+  const ToothModifications m = SampleModifications();
+  const ToothErrors err = SampleErrors();
   for (int s : {1, -1}) {
     const ZoneOfAction zone = Zone(1.55, 1.3, 0.2 * kPitch, s);
     for (const bool with_errors : {false, true}) {
@@ -705,7 +666,7 @@ TEST(TransmissionErrorTest, InvalidInputsNameTheArgument) {
 }
 
 TEST(TransmissionErrorTest, PointwiseEvaluationDoesNotAllocate) {
-#if defined(GEARDYN_HAVE_ALLOCATION_COUNTER)
+#if GEARDYN_HAVE_ALLOCATION_COUNTER
   ToothModifications m;
   m.pinion_tip_relief = {12 * kUm, 0.35 * kPitch, ReliefShape::kLinear};
   m.lead_crowning = 5 * kUm;
@@ -718,14 +679,13 @@ TEST(TransmissionErrorTest, PointwiseEvaluationDoesNotAllocate) {
       ContactLineModel(Zone(1.55, 1.3, 0.2 * kPitch), ToothProfile(1.55)), m, err);
   VectorX out(2);
   double sink = 0.0;
-  g_allocations = 0;
-  g_counting = true;
-  for (double t = -20.0; t < 80.0; t += 0.01) {
-    model.CalcChannels(t, out);
-    sink += out[0] + model.CalcTransmissionError(t)[1];
-  }
-  g_counting = false;
-  EXPECT_EQ(g_allocations, 0);
+  const long allocations = test::CountAllocations([&] {
+    for (double t = -20.0; t < 80.0; t += 0.01) {
+      model.CalcChannels(t, out);
+      sink += out[0] + model.CalcTransmissionError(t)[1];
+    }
+  });
+  EXPECT_EQ(allocations, 0);
   EXPECT_TRUE(std::isfinite(sink));
 #else
   GTEST_SKIP() << "allocation counter needs glibc";

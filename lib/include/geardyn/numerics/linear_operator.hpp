@@ -125,19 +125,14 @@ class SparseMatrixOperator {
   const SparseMatrix* A_;
 };
 
-/// @brief Dense shift-invert operator y = (K − σM)⁻¹ M x (M not owned: it must outlive this).
-class DenseShiftSolveOperator {
- public:
-  /// @brief Factorizes K − σM (see the file comment for the choice and the singularity test).
-  /// @param[in] K (n × n) symmetric stiffness [N/m, N·m/rad].
-  /// @param[in] M (n × n) symmetric mass [kg, kg·m²], same size as K.
-  /// @param[in] sigma σ, finite [units of K/M, e.g. rad²/s²].
-  /// @param[in] factorization kAuto (default), or a forced kLdlt / kLu.
-  /// @throws InvalidInput naming `K`, `M` or `sigma` for non-square or mismatched sizes, or a
-  /// non-finite σ. A singular K − σM is not an exception: see ok().
-  DenseShiftSolveOperator(const MatrixX& K, const MatrixX& M, double sigma,
-                          ShiftFactorization factorization = ShiftFactorization::kAuto);
+namespace internal {
 
+/// @brief What the dense and sparse shift-invert operators share: the accessors, Solve and Apply
+/// over an LDLᵀ (`Ldlt`) or LU (`Lu`) factorization of K − σM, chosen by the derived constructor.
+/// M is not owned: it must outlive the operator.
+template <class Matrix, class Ldlt, class Lu>
+class ShiftSolveOperatorBase {
+ public:
   /// n [-].
   Eigen::Index rows() const { return M_->rows(); }
   /// σ [units of K/M].
@@ -158,19 +153,58 @@ class DenseShiftSolveOperator {
   /// @throws InternalError if !ok().
   void Solve(const Eigen::Ref<const VectorX>& b, Eigen::Ref<VectorX> y) const;
 
- private:
-  const MatrixX* M_;
+ protected:
+  ShiftSolveOperatorBase(const Matrix& M, double sigma)
+      : M_(&M), sigma_(sigma), scratch_(M.rows()) {}
+
+  /// After an LDLᵀ attempt `ldlt` (named `name` in messages): counts it, records whether its
+  /// pivots are all positive and sets report_.used to kLdlt when forced or positive definite.
+  /// False when a forced LDLᵀ failed (report_ then says why).
+  bool RecordLdlt(const Ldlt& ldlt, ShiftFactorization factorization, const char* name);
+  /// Estimates the condition from ‖K − σM‖₁ = norm1 with the chosen factorization and sets ok.
+  void FinishFactorization(double norm1);
+
+  const Matrix* M_;
   double sigma_;
   ShiftFactorizationReport report_;
-  Eigen::LDLT<MatrixX> ldlt_;
-  Eigen::PartialPivLU<MatrixX> lu_;
+  Ldlt ldlt_;
+  Lu lu_;
   mutable VectorX scratch_;
+};
+
+extern template class ShiftSolveOperatorBase<MatrixX, Eigen::LDLT<MatrixX>,
+                                             Eigen::PartialPivLU<MatrixX>>;
+extern template class ShiftSolveOperatorBase<SparseMatrix, Eigen::SimplicialLDLT<SparseMatrix>,
+                                             Eigen::SparseLU<SparseMatrix>>;
+
+}  // namespace internal
+
+/// @brief Dense shift-invert operator y = (K − σM)⁻¹ M x (M not owned: it must outlive this).
+///
+/// rows(), sigma(), ok(), factorization(), Apply(x, y) = (K − σM)⁻¹ M x and Solve(b, y) =
+/// (K − σM)⁻¹ b as documented on internal::ShiftSolveOperatorBase.
+class DenseShiftSolveOperator
+    : public internal::ShiftSolveOperatorBase<MatrixX, Eigen::LDLT<MatrixX>,
+                                              Eigen::PartialPivLU<MatrixX>> {
+ public:
+  /// @brief Factorizes K − σM (see the file comment for the choice and the singularity test).
+  /// @param[in] K (n × n) symmetric stiffness [N/m, N·m/rad].
+  /// @param[in] M (n × n) symmetric mass [kg, kg·m²], same size as K.
+  /// @param[in] sigma σ, finite [units of K/M, e.g. rad²/s²].
+  /// @param[in] factorization kAuto (default), or a forced kLdlt / kLu.
+  /// @throws InvalidInput naming `K`, `M` or `sigma` for non-square or mismatched sizes, or a
+  /// non-finite σ. A singular K − σM is not an exception: see ok().
+  DenseShiftSolveOperator(const MatrixX& K, const MatrixX& M, double sigma,
+                          ShiftFactorization factorization = ShiftFactorization::kAuto);
 };
 
 /// @brief Sparse shift-invert operator y = (K − σM)⁻¹ M x (M not owned: it must outlive this).
 ///
+/// rows(), sigma(), ok(), factorization(), Apply and Solve as on DenseShiftSolveOperator.
 /// Not copyable (it owns Eigen's sparse factorizations).
-class SparseShiftSolveOperator {
+class SparseShiftSolveOperator
+    : public internal::ShiftSolveOperatorBase<SparseMatrix, Eigen::SimplicialLDLT<SparseMatrix>,
+                                              Eigen::SparseLU<SparseMatrix>> {
  public:
   /// @brief Factorizes K − σM (see the file comment for the choice and the singularity test).
   /// @param[in] K (n × n) symmetric stiffness [N/m, N·m/rad]; both triangles stored.
@@ -183,34 +217,6 @@ class SparseShiftSolveOperator {
                            ShiftFactorization factorization = ShiftFactorization::kAuto);
   SparseShiftSolveOperator(const SparseShiftSolveOperator&) = delete;
   SparseShiftSolveOperator& operator=(const SparseShiftSolveOperator&) = delete;
-
-  /// n [-].
-  Eigen::Index rows() const { return M_->rows(); }
-  /// σ [units of K/M].
-  double sigma() const { return sigma_; }
-  /// True when K − σM was factorized and is not numerically singular.
-  bool ok() const { return report_.ok; }
-  /// What the constructor did.
-  const ShiftFactorizationReport& factorization() const { return report_; }
-
-  /// @brief y = (K − σM)⁻¹ M x.
-  /// @pre ok(); x and y do not overlap.
-  /// @param[in] x (n) input.
-  /// @param[out] y (n) output, sized by the caller.
-  /// @throws InternalError if !ok().
-  void Apply(const Eigen::Ref<const VectorX>& x, Eigen::Ref<VectorX> y) const;
-  /// @brief y = (K − σM)⁻¹ b.
-  /// @pre ok(). @param[in] b (n) right-hand side. @param[out] y (n) solution, caller-sized.
-  /// @throws InternalError if !ok().
-  void Solve(const Eigen::Ref<const VectorX>& b, Eigen::Ref<VectorX> y) const;
-
- private:
-  const SparseMatrix* M_;
-  double sigma_;
-  ShiftFactorizationReport report_;
-  Eigen::SimplicialLDLT<SparseMatrix> ldlt_;
-  Eigen::SparseLU<SparseMatrix> lu_;
-  mutable VectorX scratch_;
 };
 
 static_assert(LinearOperator<DenseMatrixOperator>);
