@@ -14,17 +14,11 @@
 #include <vector>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/common/overloaded.hpp"
 #include "geardyn/common/units.hpp"
 
 namespace geardyn {
 namespace {
-
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-template <class... Ts>
-Overloaded(Ts...) -> Overloaded<Ts...>;
 
 using Complex = std::complex<double>;
 

@@ -10,16 +10,10 @@
 #include <utility>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/common/overloaded.hpp"
 
 namespace geardyn {
 namespace {
-
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-template <class... Ts>
-Overloaded(Ts...) -> Overloaded<Ts...>;
 
 /// Relative slack of the PSD test c0·c2 ≥ c1² on stored stiffness values: a single point load
 /// has c0·c2 = c1² exactly, which sums of rounded products may miss by a few ulps.

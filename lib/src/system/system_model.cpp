@@ -7,17 +7,11 @@
 #include <type_traits>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/common/overloaded.hpp"
 #include "system_model_data.hpp"
 
 namespace geardyn {
 namespace {
-
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-template <class... Ts>
-Overloaded(Ts...) -> Overloaded<Ts...>;
 
 // Largest |value| of channel c over every stored value of the coefficient (an upper bound of
 // |f_c(θ)| for constant, piecewise, table; for Fourier the sum of |mean| and 2|c_n|).

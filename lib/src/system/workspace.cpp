@@ -5,16 +5,10 @@
 #include <type_traits>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/common/overloaded.hpp"
 
 namespace geardyn {
 namespace {
-
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-template <class... Ts>
-Overloaded(Ts...) -> Overloaded<Ts...>;
 
 Matrix2 SliceStiffness(const SliceMeshCore& core, SliceMeshWorkspace& ws, double theta) {
   const Vector3 c = EvalSliceChannels(core, ws, theta);

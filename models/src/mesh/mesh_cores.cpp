@@ -9,17 +9,11 @@
 #include <utility>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/common/overloaded.hpp"
 #include "geardyn/common/units.hpp"
 
 namespace geardyn {
 namespace {
-
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-template <class... Ts>
-Overloaded(Ts...) -> Overloaded<Ts...>;
 
 /// Columns equal to this relative tolerance (of the largest entry) make a constant coefficient:
 /// the same criterion as MakeMeshCoefficient's kAuto (1e-13 relative).
