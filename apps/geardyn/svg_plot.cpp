@@ -33,6 +33,10 @@ struct Range {
       const double pad = lo == 0.0 ? 1.0 : 0.05 * std::abs(lo);
       lo -= pad;
       hi += pad;
+    } else {  // a 5 % margin keeps curves off the frame
+      const double pad = 0.05 * (hi - lo);
+      lo -= pad;
+      hi += pad;
     }
   }
 };
