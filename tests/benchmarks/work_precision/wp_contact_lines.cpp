@@ -26,8 +26,12 @@
 #include "geardyn/common/units.hpp"
 #include "geardyn/models/mesh/contact_lines.hpp"
 #include "geardyn/system/coefficient.hpp"
+#include "wp_common.hpp"
 
 namespace {
+
+using geardyn::wp::Row;
+using geardyn::wp::TimeIt;
 
 using geardyn::ContactLineModel;
 using geardyn::VectorX;
@@ -35,24 +39,6 @@ constexpr double kTwoPi = 2.0 * geardyn::kPi;
 constexpr double kPitch = 0.0059;  // p_bt [m]
 constexpr double kFace = 0.024;    // B [m]
 constexpr double kK = 1.4e10;      // k [N/m²]
-
-/// Wall time of one call of fn [s], repeated until ≥ 0.05 s have elapsed.
-double TimeIt(const std::function<void()>& fn) {
-  using Clock = std::chrono::steady_clock;
-  int reps = 0;
-  const auto start = Clock::now();
-  double elapsed = 0.0;
-  do {
-    fn();
-    ++reps;
-    elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-  } while (elapsed < 0.05);
-  return elapsed / reps;
-}
-
-void Row(const char* method, double knob, double time, double error, double evaluations) {
-  std::printf("%s,%g,%.4e,%.4e,%.0f\n", method, knob, time, error, evaluations);
-}
 
 geardyn::ZoneOfAction Zone(double eps_alpha, double eps_beta) {
   geardyn::ZoneOfAction z;

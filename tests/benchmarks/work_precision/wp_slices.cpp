@@ -28,8 +28,11 @@
 #include "geardyn/models/gear/gear_geometry.hpp"
 #include "geardyn/models/mesh/mesh_cores.hpp"
 #include "geardyn/system/mesh_core.hpp"
+#include "wp_common.hpp"
 
 namespace {
+
+using geardyn::wp::TimeIt;
 
 using geardyn::MeshCoreSource;
 using geardyn::SliceMeshCore;
@@ -37,22 +40,8 @@ using geardyn::Vector3;
 constexpr double kTwoPi = 2.0 * geardyn::kPi;
 constexpr int kPhases = 256;
 
-/// Wall time of one call of fn [s], repeated until ≥ 0.05 s have elapsed.
-double TimeIt(const std::function<void()>& fn) {
-  using Clock = std::chrono::steady_clock;
-  int reps = 0;
-  const auto start = Clock::now();
-  double elapsed = 0.0;
-  do {
-    fn();
-    ++reps;
-    elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-  } while (elapsed < 0.05);
-  return elapsed / reps;
-}
-
 void Row(const std::string& method, double knob, double time, double error, double evaluations) {
-  std::printf("%s,%g,%.4e,%.4e,%.0f\n", method.c_str(), knob, time, error, evaluations);
+  geardyn::wp::Row(method.c_str(), knob, time, error, evaluations);
 }
 
 MeshCoreSource Source(bool helical) {

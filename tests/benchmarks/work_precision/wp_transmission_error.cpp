@@ -30,8 +30,12 @@
 #include "geardyn/common/units.hpp"
 #include "geardyn/models/mesh/transmission_error.hpp"
 #include "geardyn/system/coefficient.hpp"
+#include "wp_common.hpp"
 
 namespace {
+
+using geardyn::wp::Row;
+using geardyn::wp::TimeIt;
 
 using geardyn::TransmissionErrorModel;
 using geardyn::VectorX;
@@ -41,24 +45,6 @@ constexpr double kFace = 0.024;    // B [m]
 constexpr double kK = 1.4e10;      // k [N/m²]
 constexpr double kUm = 1e-6;       // [m]
 constexpr double kEps = 1.55;      // ε_α [-]
-
-/// Wall time of one call of fn [s], repeated until ≥ 0.05 s have elapsed.
-double TimeIt(const std::function<void()>& fn) {
-  using Clock = std::chrono::steady_clock;
-  int reps = 0;
-  const auto start = Clock::now();
-  double elapsed = 0.0;
-  do {
-    fn();
-    ++reps;
-    elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-  } while (elapsed < 0.05);
-  return elapsed / reps;
-}
-
-void Row(const char* method, double knob, double time, double error, double evaluations) {
-  std::printf("%s,%g,%.4e,%.4e,%.0f\n", method, knob, time, error, evaluations);
-}
 
 std::vector<double> ClosedPitch(int z, std::mt19937* rng) {
   std::uniform_real_distribution<double> u(-3 * kUm, 3 * kUm);
