@@ -1,0 +1,45 @@
+/// @file
+/// @brief One geardyn subcommand: how it registers its options and how it runs. Each subcommand
+/// lives in its own `<name>_command.cpp` and is listed once in `commands.cpp`.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace geardyn::app {
+
+/// Options every scene subcommand accepts (`SCENE`, `--set`, `--out`, `--json`).
+struct SceneCommandOptions {
+  std::string scene;
+  std::vector<std::string> overrides;
+  std::string out_dir;
+  bool json = false;
+};
+
+/// Adds the SceneCommandOptions to `cmd`.
+void AddSceneOptions(CLI::App* cmd, SceneCommandOptions* opts);
+
+/// @brief A registered subcommand: its CLI11 node and the action run when it was parsed.
+///
+/// The action returns an ExitCode and may throw InvalidInput (exit 2) or InternalError (exit 3);
+/// RunCli turns exceptions into messages. Options are owned by the action's closure.
+struct Command {
+  CLI::App* cli = nullptr;
+  std::function<int(std::ostream& out)> run;
+};
+
+/// A function that adds one subcommand to `app`.
+using CommandFactory = Command (*)(CLI::App& app);
+
+/// Every subcommand, in the order `geardyn --help` lists them (commands.cpp).
+const std::vector<CommandFactory>& CommandFactories();
+
+// One factory per subcommand (each in its own <name>_command.cpp).
+Command AddInfoCommand(CLI::App& app);
+Command AddMeshCommand(CLI::App& app);
+Command AddScenesCommand(CLI::App& app);
+
+}  // namespace geardyn::app

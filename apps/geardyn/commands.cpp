@@ -1,0 +1,27 @@
+#include "geardyn/command.hpp"
+
+namespace geardyn::app {
+
+void AddSceneOptions(CLI::App* cmd, SceneCommandOptions* opts) {
+  cmd->add_option("scene", opts->scene,
+                  "scene file (TOML) or a built-in scene, e.g. builtin:kahraman-blankenship-rig")
+      ->required();
+  cmd->add_option("--set", opts->overrides,
+                  "override a scene value, e.g. --set gear.pinion.teeth=23 (repeatable)")
+      ->take_all()
+      ->allow_extra_args(false);
+  cmd->add_option("--out", opts->out_dir, "directory for result files (created if missing)");
+  cmd->add_flag("--json", opts->json, "print the results as JSON instead of text");
+}
+
+const std::vector<CommandFactory>& CommandFactories() {
+  // One line per subcommand; keep the order of `geardyn --help`.
+  static const std::vector<CommandFactory> factories = {
+      &AddInfoCommand,
+      &AddMeshCommand,
+      &AddScenesCommand,
+  };
+  return factories;
+}
+
+}  // namespace geardyn::app

@@ -1,0 +1,57 @@
+#include <memory>
+
+#include "geardyn/cli.hpp"
+#include "geardyn/command.hpp"
+#include "geardyn/mesh_report.hpp"
+#include "geardyn/models/scene/scene_reader.hpp"
+#include "geardyn/output_files.hpp"
+
+namespace geardyn::app {
+namespace {
+
+struct MeshCommandOptions {
+  SceneCommandOptions scene;
+  MeshSamplingOptions sampling;
+};
+
+int RunMesh(const MeshCommandOptions& opts, std::ostream& out) {
+  const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
+  std::vector<MeshSamples> samples;
+  const nlohmann::json report = MakeMeshReport(scene, opts.sampling, &samples);
+  if (opts.scene.json) {
+    out << report.dump(2) << "\n";
+  } else {
+    for (const nlohmann::json& m : report["meshes"]) {
+      out << "mesh " << m["name"].get<std::string>() << ": level " << m["level"].get<std::string>()
+          << ", " << m["time_dependence"].get<std::string>() << ", period "
+          << m["period_meshes"].get<long>() << " mesh cycle(s), K "
+          << m["stiffness"]["min"].get<double>() << " … " << m["stiffness"]["max"].get<double>()
+          << " N/m (mean " << m["stiffness"]["mean"].get<double>() << ")\n";
+    }
+  }
+  const std::string& dir = opts.scene.out_dir;
+  if (!dir.empty()) {
+    WriteOutputFile(dir, "mesh.json", report.dump(2) + "\n");
+    for (const MeshSamples& s : samples) {
+      WriteOutputFile(dir, "mesh_" + s.mesh_name + ".csv", FormatMeshCsv(s));
+      WriteOutputFile(dir, "mesh_" + s.mesh_name + ".svg",
+                      RenderMeshSvg(s, scene.source + " — mesh " + s.mesh_name));
+    }
+    if (!opts.scene.json) out << "written to " << dir << "\n";
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+Command AddMeshCommand(CLI::App& app) {
+  auto opts = std::make_shared<MeshCommandOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "mesh", "write K(θ), h(θ), μ(θ), ε(θ) of every mesh over one period (CSV, JSON, SVG)");
+  AddSceneOptions(cmd, &opts->scene);
+  cmd->add_option("--samples", opts->sampling.samples_per_mesh,
+                  "samples per mesh cycle (default: 360, fewer over long hunting periods)");
+  return {cmd, [opts](std::ostream& out) { return RunMesh(*opts, out); }};
+}
+
+}  // namespace geardyn::app
