@@ -5,54 +5,23 @@
 #include <type_traits>
 
 #include "geardyn/common/check.hpp"
-#include "geardyn/common/overloaded.hpp"
+#include "mesh_core_values.hpp"
 
 namespace geardyn {
 namespace {
 
-Matrix2 SliceStiffness(const SliceMeshCore& core, SliceMeshWorkspace& ws, double theta) {
-  const Vector3 c = EvalSliceChannels(core, ws, theta);
-  Matrix2 k2;
-  k2 << c(0), -c(1), -c(1), c(2);
-  return k2;
-}
+using internal::kWantDamping;
+using internal::kWantLoad;
+using internal::kWantStiffness;
+using internal::MeshCoreValues;
 
 // The 2×2 stiffness, damping and load pair of mesh k at the system phase θ.
-struct CoreValues {
-  Matrix2 stiffness = Matrix2::Zero();
-  Matrix2 damping = Matrix2::Zero();
-  Vector2 load = Vector2::Zero();
-};
-
-enum Want { kStiffness = 1, kDamping = 2, kLoad = 4 };
-
-CoreValues EvalCore(const SystemMesh& mesh, SystemWorkspace& ws, int k, double theta, int want) {
-  const double phase = mesh.MeshPhase(theta);
-  CoreValues out;
-  std::visit(Overloaded{
-                 [&](const LinearMeshCore& core) {
-                   if (want & kStiffness) out.stiffness = EvalStiffnessCore(core, phase);
-                   if (want & kDamping) {
-                     out.damping = EvalDampingCore(core, phase, mesh.damping_coefficient);
-                   }
-                   if ((want & kLoad) && core.transmission_error()) {
-                     out.load = EvalTransmissionErrorLoad(core, phase);
-                   }
-                 },
-                 [&](const SliceMeshCore& core) {
-                   SliceMeshWorkspace& sws = ws.slice_workspaces[ws.slice_workspace_of_mesh[k]];
-                   if (want & (kStiffness | kDamping)) {
-                     const Matrix2 k2 = SliceStiffness(core, sws, phase);
-                     out.stiffness = k2;
-                     if ((want & kDamping) && k2(0, 0) > 0.0) {
-                       out.damping = (mesh.damping_coefficient / k2(0, 0)) * k2;
-                     }
-                   }
-                 },
-                 [&](const std::shared_ptr<const NonlinearMeshCore>&) {},
-             },
-             mesh.core);
-  return out;
+MeshCoreValues EvalCore(const SystemMesh& mesh, SystemWorkspace& ws, int k, double theta,
+                        int want) {
+  const int slice = ws.slice_workspace_of_mesh[k];
+  return internal::EvalMeshCoreValues(mesh.core, mesh.damping_coefficient,
+                                      slice >= 0 ? &ws.slice_workspaces[slice] : nullptr,
+                                      mesh.MeshPhase(theta), want);
 }
 
 void CheckWorkspace(const SystemModel& model, const SystemWorkspace& ws, StorageKind storage,
@@ -126,7 +95,8 @@ void AddMeshBlocks(const SystemModel& model, SystemWorkspace& ws, double theta, 
     if (mean) {
       core = mesh.mean_core_stiffness;
     } else {
-      const CoreValues v = EvalCore(mesh, ws, k, theta, damping ? kDamping : kStiffness);
+      const MeshCoreValues v =
+          EvalCore(mesh, ws, k, theta, damping ? kWantDamping : kWantStiffness);
       core = damping ? v.damping : v.stiffness;
     }
     Matrix12& block = damping ? ws.mesh_damping[k] : ws.mesh_stiffness[k];
@@ -282,7 +252,7 @@ const VectorX& AssembleLoad(const SystemModel& model, SystemWorkspace& ws, doubl
   ws.load = model.constant_load();
   const std::vector<SystemMesh>& meshes = model.meshes();
   for (int k = 0; k < static_cast<int>(meshes.size()); ++k) {
-    const CoreValues v = EvalCore(meshes[k], ws, k, theta, kLoad);
+    const MeshCoreValues v = EvalCore(meshes[k], ws, k, theta, kWantLoad);
     ws.mesh_load[k].noalias() = meshes[k].G.transpose() * v.load;
     ScatterLoad(meshes[k], ws.mesh_load[k], ws.load);
   }

@@ -1,0 +1,68 @@
+#include "geardyn/system/system_steps.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "geardyn/common/check.hpp"
+#include "mesh_coefficients.hpp"
+
+namespace geardyn {
+
+double SystemSteps::interval_end(int k) const {
+  return k + 1 < num_intervals() ? breakpoints[k + 1] : breakpoints[0] + period;
+}
+
+void CheckSingleMeshFrequency(const SystemModel& model, const char* analysis) {
+  for (const SystemMesh& mesh : model.meshes()) {
+    GEARDYN_THROW_UNLESS(std::abs(mesh.phase_ratio - 1.0) <= 1e-12,
+                         analysis << ": mesh '" << mesh.name << "' runs at " << mesh.phase_ratio
+                                  << " times the first mesh frequency; meshes at different "
+                                     "frequencies (e.g. a two-stage train) make the system "
+                                     "quasi-periodic, and this analysis needs one mesh frequency");
+  }
+}
+
+bool HasPiecewiseConstantOperator(const SystemModel& model) {
+  for (const SystemMesh& mesh : model.meshes()) {
+    if (!internal::AllStepwise(internal::MeshOperatorCoefficients(mesh.core, false))) return false;
+  }
+  return true;
+}
+
+SystemSteps CollectSystemSteps(const SystemModel& model, double merge_tol) {
+  CheckSingleMeshFrequency(model, "CollectSystemSteps");
+  GEARDYN_THROW_UNLESS(std::isfinite(merge_tol) && merge_tol >= 0.0,
+                       "CollectSystemSteps: merge_tol must be finite and >= 0, got " << merge_tol);
+  SystemSteps steps;
+  steps.period_meshes = model.period_meshes();
+  steps.period = 2.0 * std::numbers::pi * static_cast<double>(steps.period_meshes);
+  std::vector<double> points;
+  for (const SystemMesh& mesh : model.meshes()) {
+    const std::vector<const Coefficient*> coefs =
+        internal::MeshOperatorCoefficients(mesh.core, false);
+    GEARDYN_THROW_UNLESS(internal::AllStepwise(coefs),
+                         "CollectSystemSteps: mesh '"
+                             << mesh.name
+                             << "' has a smooth (Fourier or table) stiffness; the step structure "
+                                "exists only for constant and piecewise-constant coefficients");
+    const std::int64_t own = internal::MeshCorePeriod(mesh.core);
+    const std::vector<double> mesh_points = internal::RawBreakpoints(coefs, own);
+    const double own_period = 2.0 * std::numbers::pi * static_cast<double>(own);
+    const std::int64_t copies = steps.period_meshes / own;
+    for (std::int64_t j = 0; j < copies; ++j) {
+      for (const double b : mesh_points) {
+        // θ = θ_k − φ_k, reduced to [0, T_θ).
+        const double theta =
+            std::fmod(b + own_period * static_cast<double>(j) - mesh.phase_offset, steps.period);
+        points.push_back(theta < 0.0 ? theta + steps.period : theta);
+      }
+    }
+  }
+  const std::vector<double> merged =
+      internal::SortAndMerge(std::move(points), steps.period, merge_tol);
+  steps.breakpoints =
+      Eigen::Map<const VectorX>(merged.data(), static_cast<Eigen::Index>(merged.size()));
+  return steps;
+}
+
+}  // namespace geardyn
