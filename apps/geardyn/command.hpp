@@ -40,6 +40,7 @@ const std::vector<CommandFactory>& CommandFactories();
 // One factory per subcommand (each in its own <name>_command.cpp).
 Command AddInfoCommand(CLI::App& app);
 Command AddMeshCommand(CLI::App& app);
+Command AddModesCommand(CLI::App& app);
 Command AddScenesCommand(CLI::App& app);
 
 }  // namespace geardyn::app

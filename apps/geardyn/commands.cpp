@@ -19,6 +19,7 @@ const std::vector<CommandFactory>& CommandFactories() {
   static const std::vector<CommandFactory> factories = {
       &AddInfoCommand,
       &AddMeshCommand,
+      &AddModesCommand,
       &AddScenesCommand,
   };
   return factories;

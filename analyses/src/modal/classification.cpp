@@ -9,6 +9,24 @@
 #include "geardyn/common/check.hpp"
 #include "modal/modal_internal.hpp"
 
+namespace geardyn {
+
+const char* ToString(PlanetaryModeType type) {
+  switch (type) {
+    case PlanetaryModeType::kRotational:
+      return "rotational";
+    case PlanetaryModeType::kTranslational:
+      return "translational";
+    case PlanetaryModeType::kPlanet:
+      return "planet";
+    case PlanetaryModeType::kMixed:
+      return "mixed";
+  }
+  return "unknown";
+}
+
+}  // namespace geardyn
+
 namespace geardyn::internal {
 namespace {
 
@@ -71,6 +89,50 @@ bool HasUnownedStiffness(const SystemModel& model) {
   const SparseMatrix& k0 = model.constant_stiffness();
   const double scale = std::max(k0.norm(), owned.norm());
   return scale > 0.0 && SparseMatrix(k0 - owned).norm() > kOtherStiffnessTol * scale;
+}
+
+// DOF sets of the planetary labels (modal.hpp): axial/torsional and lateral DOFs of the central
+// (non-planet) bodies, and every planet DOF.
+enum PlanetarySet { kCentralAxial = 0, kCentralLateral = 1, kPlanetDofs = 2, kNumPlanetarySets };
+
+// Lin & Parker (1999) labels per multiplicity group from the energies of the three DOF sets.
+std::vector<PlanetaryModeType> LabelPlanetaryModes(const SystemModel& model, const MeanSystem& sys,
+                                                   const MatrixX& shapes,
+                                                   const std::vector<std::vector<int>>& groups) {
+  const DofMap& dofs = model.dof_map();
+  const int n = model.num_dofs();
+  std::vector<int> set(n);
+  for (int i = 0; i < n; ++i) {
+    if (dofs.body_role(dofs.dof_body(i)) == BodyRole::kPlanet) {
+      set[i] = kPlanetDofs;
+    } else {
+      const DofKind kind = dofs.dof_kind(i);
+      const bool axial = kind == DofKind::kRotationAxial || kind == DofKind::kTranslationAxial;
+      set[i] = axial ? kCentralAxial : kCentralLateral;
+    }
+  }
+  std::vector<PlanetaryModeType> labels(static_cast<std::size_t>(shapes.cols()),
+                                        PlanetaryModeType::kMixed);
+  VectorX energy(kNumPlanetarySets), mode_energy(kNumPlanetarySets);
+  for (const std::vector<int>& group : groups) {
+    energy.setZero();
+    for (int k : group) {
+      AccumulateBlockDiagonal(sys.M, set, shapes.col(k), mode_energy);
+      energy += mode_energy.cwiseMax(0.0);
+    }
+    const double central = energy(kCentralAxial) + energy(kCentralLateral);
+    const double total = central + energy(kPlanetDofs);
+    PlanetaryModeType type = PlanetaryModeType::kMixed;
+    if (central <= kPlanetaryEnergyTol * total) {
+      type = PlanetaryModeType::kPlanet;
+    } else if (energy(kCentralLateral) <= kPlanetaryEnergyTol * central) {
+      type = PlanetaryModeType::kRotational;
+    } else if (energy(kCentralAxial) <= kPlanetaryEnergyTol * central) {
+      type = PlanetaryModeType::kTranslational;
+    }
+    for (int k : group) labels[static_cast<std::size_t>(k)] = type;
+  }
+  return labels;
 }
 
 }  // namespace
@@ -146,6 +208,10 @@ void ClassifyModes(const SystemModel& model, const MeanSystem& sys, const Matrix
     if (other) strain(num_owners - 1) = std::max(total - strain.head(num_owners - 1).sum(), 0.0);
     Normalize(strain);
     result->strain_fractions.row(k) = strain.transpose();
+  }
+  result->planetary_labels.clear();
+  if (dofs.num_planets() > 0) {
+    result->planetary_labels = LabelPlanetaryModes(model, sys, shapes, result->multiplicity_groups);
   }
 }
 

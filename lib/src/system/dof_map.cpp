@@ -54,7 +54,44 @@ const char* ToString(BodyDof component) {
   return "?";
 }
 
+const char* ToString(BodyRole role) {
+  switch (role) {
+    case BodyRole::kOther:
+      return "other";
+    case BodyRole::kSun:
+      return "sun";
+    case BodyRole::kRing:
+      return "ring";
+    case BodyRole::kCarrier:
+      return "carrier";
+    case BodyRole::kPlanet:
+      return "planet";
+  }
+  return "?";
+}
+
+DofMap::DofMap(std::vector<std::string> body_names, std::vector<BodyRole> body_roles)
+    : DofMap(std::move(body_names)) {
+  GEARDYN_THROW_UNLESS(
+      body_roles.size() == body_names_.size(),
+      "body_roles: " << body_roles.size() << " roles for " << body_names_.size() << " bodies");
+  body_roles_ = std::move(body_roles);
+}
+
+BodyRole DofMap::body_role(BodyIndex b) const {
+  GEARDYN_THROW_UNLESS(b.value() >= 0 && b.value() < num_bodies(),
+                       "body index " << b.value() << ": out of range [0, " << num_bodies() << ")");
+  return body_roles_[b.value()];
+}
+
+int DofMap::num_planets() const {
+  int n = 0;
+  for (BodyRole r : body_roles_) n += r == BodyRole::kPlanet ? 1 : 0;
+  return n;
+}
+
 DofMap::DofMap(std::vector<std::string> body_names) : body_names_(std::move(body_names)) {
+  body_roles_.assign(body_names_.size(), BodyRole::kOther);
   for (std::size_t b = 0; b < body_names_.size(); ++b) {
     GEARDYN_THROW_UNLESS(!body_names_[b].empty(), "body " << b << ": empty name");
     for (std::size_t a = 0; a < b; ++a) {
@@ -77,6 +114,7 @@ DofMap::DofMap(std::vector<std::string> body_names) : body_names_(std::move(body
 DofMap DofMap::Restrict(const std::vector<int>& dofs) const {
   DofMap out;
   out.body_names_ = body_names_;
+  out.body_roles_ = body_roles_;
   out.full_to_kept_.assign(full_to_kept_.size(), -1);
   int previous = -1;
   for (std::size_t k = 0; k < dofs.size(); ++k) {

@@ -92,8 +92,13 @@ BodyIndex SystemBuilder::AddBody(const std::string& name, const Matrix6& mass,
   const std::string what = "body '" + name + "' mass";
   CheckMatrix(mass, what, /*psd=*/true);
   GEARDYN_THROW_UNLESS(position.allFinite(), "body '" << name << "' position: non-finite");
-  bodies_.push_back({name, mass, position});
+  bodies_.push_back({name, mass, position, BodyRole::kOther});
   return BodyIndex(num_bodies() - 1);
+}
+
+void SystemBuilder::SetBodyRole(BodyIndex body, BodyRole role) {
+  CheckBody(body, "SetBodyRole");
+  bodies_[body.value()].role = role;
 }
 
 ElementIndex SystemBuilder::AddElement(const std::string& name, ElementKind kind,
@@ -196,8 +201,12 @@ SystemModel SystemBuilder::Build() const {
   auto data = std::make_shared<SystemModel::Data>();
   data->id = internal::NextModelId();
   std::vector<std::string> names;
-  for (const Body& b : bodies_) names.push_back(b.name);
-  data->dof_map = DofMap(names);
+  std::vector<BodyRole> roles;
+  for (const Body& b : bodies_) {
+    names.push_back(b.name);
+    roles.push_back(b.role);
+  }
+  data->dof_map = DofMap(names, roles);
   const int n = data->dof_map.num_dofs();
 
   auto body_dofs = [](const std::vector<BodyIndex>& bodies) {

@@ -105,6 +105,8 @@ void CheckPositiveSemiDefinite(const Fields& f, std::string_view key, const toml
   }
 }
 
+}  // namespace
+
 // A symmetric positive semi-definite 6×6 matrix: 6 numbers (diagonal) or 6 rows of 6.
 Matrix6 ReadMatrix6(const Fields& f, std::string_view key, const std::string& what) {
   const toml::node* n = f.Find(key);
@@ -123,8 +125,6 @@ Matrix6 ReadMatrix6(const Fields& f, std::string_view key, const std::string& wh
   CheckPositiveSemiDefinite(f, key, *a, m);
   return m;
 }
-
-}  // namespace
 
 BearingDef ReadBearing(const ErrorContext& ctx, const toml::table& t, std::size_t index,
                        const Scene& scene) {

@@ -34,7 +34,9 @@ std::string DefaultElementName(std::string_view kind, const toml::table& t, std:
     const auto* g = t.get_as<std::string>("gear");
     return p != nullptr && g != nullptr ? p->get() + "-" + g->get() : std::string();
   }
-  if (kind == "bearing" || kind == "load") return std::string(kind) + std::to_string(index);
+  if (kind == "bearing" || kind == "load" || kind == "planetary") {
+    return std::string(kind) + std::to_string(index);
+  }
   return {};
 }
 

@@ -21,7 +21,8 @@
 namespace geardyn::internal {
 
 /// @brief The name element `index` of [[kind]] gets when it has no `name` key: "<pinion>-<gear>"
-/// for a mesh whose pinion and gear are strings, "bearing<i>" / "load<i>", else empty (a gear
+/// for a mesh whose pinion and gear are strings, "bearing<i>" / "load<i>" / "planetary<i>", else
+/// empty (a gear
 /// must be named).
 std::string DefaultElementName(std::string_view kind, const toml::table& t, std::size_t index);
 

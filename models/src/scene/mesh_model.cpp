@@ -13,6 +13,7 @@
 
 #include "geardyn/common/check.hpp"
 #include "geardyn/models/mesh/transmission_error.hpp"
+#include "geardyn/models/scene/planetary.hpp"
 #include "geardyn/models/scene/scene.hpp"
 #include "scene/mesh_model_reader.hpp"
 #include "scene/speed_ratios.hpp"
@@ -99,6 +100,22 @@ std::optional<Coefficient> MakeTransmissionError(const ContactLineModel& lines,
 std::optional<double> MeshLineLoad(const Scene& scene, const MeshDef& mesh) {
   const GearPairGeometry& g = mesh.geometry;
   const std::string& body = scene.operating_point.body;
+  if (const auto set = scene.FindPlanetaryMesh(mesh.name)) {
+    // Planetary: every sun and ring mesh carries F_t = |T_s| / (N r_s), T_s the sun torque of
+    // the operating point's torque (static ratios 1 : z_r/z_s : −(1 + z_r/z_s)).
+    const PlanetaryDef& p = *set->first;
+    const double zr_over_zs = static_cast<double>(p.ring_teeth) / p.sun_teeth;
+    double ratio = 0.0;
+    if (body == p.sun) ratio = 1.0;
+    if (body == p.ring) ratio = zr_over_zs;
+    if (body == p.carrier) ratio = -(1.0 + zr_over_zs);
+    if (ratio == 0.0 || scene.operating_point.torque == 0.0) return std::nullopt;
+    const double sun_radius = p.sun_meshes[set->second] == mesh.name
+                                  ? g.pinion.reference_radius
+                                  : g.transverse_module * p.sun_teeth / 2.0;
+    return std::abs(scene.operating_point.torque / ratio) /
+           (static_cast<double>(p.planets.size()) * sun_radius) / g.face_width;
+  }
   double radius = 0.0;
   if (body == mesh.pinion) radius = g.pinion.reference_radius;
   if (body == mesh.gear) radius = g.gear.reference_radius;
@@ -114,6 +131,12 @@ int MeshDriveSign(const Scene& scene, const MeshDef& mesh, std::vector<std::stri
     }
     return 1;
   };
+  // Planetary meshes: the set's rule (planetary.hpp): s = s_s for the sun meshes, −s_s for the
+  // ring meshes (whose pinion, the planet, reacts the sun mesh).
+  if (const auto set = scene.FindPlanetaryMesh(mesh.name)) {
+    const int sun_sign = PlanetarySunDriveSign(scene, *set->first, warnings);
+    return set->first->sun_meshes[set->second] == mesh.name ? sun_sign : -sun_sign;
+  }
   if (op.torque == 0.0) return fallback("the operating-point torque is 0: no loaded flank");
   const auto reach = ReachableWithout(scene, op.body, mesh.name);
   const bool pinion_side = reach.contains(mesh.pinion);

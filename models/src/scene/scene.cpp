@@ -27,8 +27,22 @@ double Scene::GearSpeed(std::string_view name) const {
   return it->second * operating_point.speed;
 }
 
+std::optional<std::pair<const PlanetaryDef*, int>> Scene::FindPlanetaryMesh(
+    std::string_view mesh_name) const {
+  for (const PlanetaryDef& set : planetaries) {
+    for (std::size_t n = 0; n < set.planets.size(); ++n) {
+      if (set.sun_meshes[n] == mesh_name || set.ring_meshes[n] == mesh_name) {
+        return std::make_pair(&set, static_cast<int>(n));
+      }
+    }
+  }
+  return std::nullopt;
+}
+
 double Scene::MeshFrequencyHz(const MeshDef& mesh) const {
-  const double omega = GearSpeed(mesh.pinion);
+  double omega = GearSpeed(mesh.pinion);
+  // Inside a planetary set the teeth pass at the speed relative to the carrier.
+  if (const auto set = FindPlanetaryMesh(mesh.name)) omega -= GearSpeed(set->first->carrier);
   return std::abs(omega) * static_cast<double>(gear(mesh.pinion).blank.teeth) / (2.0 * kPi);
 }
 

@@ -96,13 +96,20 @@ TablesByName ReadSection(const ErrorContext& ctx, const toml::table& root, const
 
 // Kinematics: loops of meshes (and torsionally stiff bearings) must close.
 void CheckKinematics(const ErrorContext& ctx, const Scene& scene, const TablesByName& mesh_tables,
-                     const TablesByName& bearing_tables) {
+                     const TablesByName& bearing_tables,
+                     const std::vector<const toml::table*>& planetary_tables) {
   const internal::SpeedRatios ratios = internal::CalcSpeedRatios(scene, scene.operating_point.body);
   if (!ratios.conflict_mesh && !ratios.conflict_bearing) return;
   const bool is_mesh = ratios.conflict_mesh.has_value();
   const std::string name = is_mesh ? scene.meshes[*ratios.conflict_mesh].name
                                    : scene.bearings[*ratios.conflict_bearing].name;
-  const toml::table* t = is_mesh ? mesh_tables.at(name) : bearing_tables.at(name);
+  const toml::table* t = nullptr;
+  if (const auto planetary = scene.FindPlanetaryMesh(name); is_mesh && planetary) {
+    const auto& sets = scene.planetaries;
+    t = planetary_tables[static_cast<std::size_t>(planetary->first - sets.data())];
+  } else {
+    t = is_mesh ? mesh_tables.at(name) : bearing_tables.at(name);
+  }
   ctx.Fail(t, (is_mesh ? "mesh." : "bearing.") + name,
            "kinematically locked loop: through the other elements gear '" + ratios.conflict_gear +
                "' turns at " + internal::FormatNumber(ratios.ratio_known) +
@@ -114,8 +121,10 @@ Scene Validate(const ErrorContext& ctx, const toml::table& root) {
   Scene scene;
   scene.source = ctx.source();
   const internal::Fields top(ctx, root, "");
-  top.CheckKnown({"title", "gear", "mesh", "bearing", "load", "operating_point"});
+  top.CheckKnown(
+      {"title", "planar", "gear", "mesh", "planetary", "bearing", "load", "operating_point"});
   if (auto title = top.OptString("title")) scene.title = *title;
+  if (auto planar = top.OptBool("planar")) scene.planar = *planar;
 
   ReadSection(
       ctx, root, {"gear", true, true},
@@ -125,6 +134,15 @@ Scene Validate(const ErrorContext& ctx, const toml::table& root) {
       ctx, root, {"mesh", true, false},
       [&](const toml::table& t, std::size_t i) { return internal::ReadMesh(ctx, t, i, scene); },
       &scene.meshes);
+  // [[planetary]] sets expand into gears and meshes before the bearings and loads refer to them.
+  std::vector<const toml::table*> planetary_tables;
+  if (const toml::array* sets = ArrayOfTables(ctx, root, "planetary")) {
+    for (std::size_t i = 0; i < sets->size(); ++i) {
+      const toml::table& t = *sets->get(i)->as_table();
+      internal::ReadPlanetary(ctx, t, i, &scene);
+      planetary_tables.push_back(&t);
+    }
+  }
   const TablesByName bearing_tables = ReadSection(
       ctx, root, {"bearing", false, false},
       [&](const toml::table& t, std::size_t i) { return internal::ReadBearing(ctx, t, i, scene); },
@@ -134,8 +152,10 @@ Scene Validate(const ErrorContext& ctx, const toml::table& root) {
       [&](const toml::table& t, std::size_t i) { return internal::ReadLoad(ctx, t, i, scene); },
       &scene.loads);
 
+  internal::AddPlanetBearings(ctx, planetary_tables, &scene);
   scene.operating_point = internal::ReadOperatingPoint(ctx, root, scene);
-  CheckKinematics(ctx, scene, mesh_tables, bearing_tables);
+  internal::CheckPlanetaryOperatingPoint(ctx, planetary_tables, scene);
+  CheckKinematics(ctx, scene, mesh_tables, bearing_tables, planetary_tables);
   return scene;
 }
 

@@ -10,9 +10,13 @@
 #include <toml++/toml.h>
 
 #include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include "geardyn/models/scene/scene.hpp"
 #include "scene/error_context.hpp"
+#include "scene/toml_fields.hpp"
 
 namespace geardyn::internal {
 
@@ -33,6 +37,27 @@ MeshDef ReadMesh(const ErrorContext& ctx, const toml::table& t, std::size_t inde
 /// @param[in] scene its gears are the bodies the bearing may connect
 BearingDef ReadBearing(const ErrorContext& ctx, const toml::table& t, std::size_t index,
                        const Scene& scene);
+
+/// @brief A symmetric positive semi-definite 6×6 matrix under `key` of `f`'s table: 6 numbers
+/// (diagonal) or 6 rows of 6 (bearing_reader.cpp; `what` describes it in a "missing" error).
+Matrix6 ReadMatrix6(const Fields& f, std::string_view key, const std::string& what);
+
+/// @brief Reads element `index` of [[planetary]] and expands it into `scene`
+/// (planetary_reader.cpp): appends the planets and the carrier to scene->gears, replaces the two
+/// template meshes by one copy per planet, and appends the PlanetaryDef. The planet bearings are
+/// appended later by AddPlanetBearings (after the [[bearing]] tables, whose names they must not
+/// repeat).
+void ReadPlanetary(const ErrorContext& ctx, const toml::table& t, std::size_t index, Scene* scene);
+
+/// @brief Appends the planet-on-carrier bearings of `scene->planetaries` to scene->bearings,
+/// rejecting a name already used by a [[bearing]] (reported at the planetary table tables[i]).
+void AddPlanetBearings(const ErrorContext& ctx, const std::vector<const toml::table*>& tables,
+                       Scene* scene);
+
+/// @brief Rejects an operating point on a planetary set's fixed member (it has no speed).
+void CheckPlanetaryOperatingPoint(const ErrorContext& ctx,
+                                  const std::vector<const toml::table*>& tables,
+                                  const Scene& scene);
 
 /// @brief Reads element `index` of [[load]] (load_reader.cpp).
 TorqueLoadDef ReadLoad(const ErrorContext& ctx, const toml::table& t, std::size_t index,

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include "geardyn/models/scene/planetary.hpp"
+
 namespace geardyn::internal {
 namespace {
 
@@ -25,6 +27,7 @@ SpeedRatios CalcSpeedRatios(const Scene& scene, std::string_view reference) {
   std::vector<Edge> edges;
   for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
     const MeshDef& mesh = scene.meshes[i];
+    if (scene.FindPlanetaryMesh(mesh.name)) continue;  // the set's own rule below
     const GearDef& pinion = scene.gear(mesh.pinion);
     const GearDef& gear = scene.gear(mesh.gear);
     const double sign = gear.blank.kind == GearKind::kInternal ? 1.0 : -1.0;
@@ -40,11 +43,30 @@ SpeedRatios CalcSpeedRatios(const Scene& scene, std::string_view reference) {
     }
   }
 
+  // Planetary sets: Ω_m = a_m t for every member (Willis, planetary.hpp).
+  std::vector<std::map<std::string, double, std::less<>>> sets;
+  for (const PlanetaryDef& set : scene.planetaries) sets.push_back(PlanetarySpeedFactors(set));
+  // t of set s from its first member with a known ratio and a_m ≠ 0, if any.
+  const auto set_t = [&](const auto& factors, const SpeedRatios& r) -> std::optional<double> {
+    for (const auto& [member, a] : factors) {
+      const auto it = r.ratio.find(member);
+      if (a != 0.0 && it != r.ratio.end()) return it->second / a;
+    }
+    return std::nullopt;
+  };
+
   SpeedRatios result;
   result.ratio.emplace(std::string(reference), 1.0);
   // Relaxation over the (small) edge list until nothing changes: a breadth-first spanning tree.
   for (bool changed = true; changed;) {
     changed = false;
+    for (const auto& factors : sets) {
+      const std::optional<double> t = set_t(factors, result);
+      if (!t) continue;
+      for (const auto& [member, a] : factors) {
+        if (result.ratio.emplace(member, a * *t).second) changed = true;
+      }
+    }
     for (const Edge& e : edges) {
       const auto ia = result.ratio.find(e.a);
       const auto ib = result.ratio.find(e.b);
@@ -54,6 +76,25 @@ SpeedRatios CalcSpeedRatios(const Scene& scene, std::string_view reference) {
       } else if (ib != result.ratio.end() && ia == result.ratio.end()) {
         result.ratio.emplace(e.a, ib->second / e.factor);
         changed = true;
+      }
+    }
+  }
+  // Every planetary member must agree with its set's t.
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    const std::optional<double> t = set_t(sets[s], result);
+    if (!t) continue;
+    for (const auto& [member, a] : sets[s]) {
+      const double known = result.ratio.at(member);
+      const double implied = a * *t;
+      if (std::abs(known - implied) > kLoopTol * std::max(std::abs(known), std::abs(implied))) {
+        const std::string& first_mesh = scene.planetaries[s].sun_meshes.front();
+        for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+          if (scene.meshes[i].name == first_mesh) result.conflict_mesh = i;
+        }
+        result.conflict_gear = member;
+        result.ratio_known = known;
+        result.ratio_implied = implied;
+        return result;
       }
     }
   }

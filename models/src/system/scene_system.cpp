@@ -12,6 +12,7 @@
 #include "geardyn/models/mesh/mesh_frame.hpp"
 #include "geardyn/models/mesh/mesh_jacobian.hpp"
 #include "geardyn/models/scene/mesh_model.hpp"
+#include "geardyn/models/scene/planetary.hpp"
 #include "geardyn/system/system_builder.hpp"
 
 namespace geardyn {
@@ -58,6 +59,10 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
     bool found = false;
     for (const MeshDef& m : scene.meshes) found = found || m.name == name;
     GEARDYN_THROW_UNLESS(found, "mesh_angles." << name << ": no mesh of that name");
+    GEARDYN_THROW_UNLESS(!scene.FindPlanetaryMesh(name),
+                         "mesh_angles." << name
+                                        << ": a planetary mesh; its line of centres follows "
+                                           "from its planet's angle");
   }
 
   SceneSystem out;
@@ -75,9 +80,37 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
     centre[g] = c;
     queue.push_back(g);
   };
+  // A planetary set is placed as a whole when any member is reached: central members coaxial,
+  // planet n at a_w (cos ψ_n, sin ψ_n) from the set's centre.
+  auto place_planetary = [&](int g) {
+    for (const PlanetaryDef& set : scene.planetaries) {
+      std::optional<Vector3> c0;
+      const std::string& name = scene.gears[g].name;
+      if (name == set.sun || name == set.ring || name == set.carrier) c0 = *centre[g];
+      for (std::size_t n = 0; n < set.planets.size(); ++n) {
+        if (name == set.planets[n]) {
+          const double psi = set.planet_angles[n];
+          c0 = *centre[g] - set.center_distance * Vector3(std::cos(psi), std::sin(psi), 0.0);
+        }
+      }
+      if (!c0) continue;
+      for (const std::string* member : {&set.sun, &set.ring, &set.carrier}) {
+        const int m = GearIndex(scene, *member);
+        if (!centre[m]) place(m, *c0);
+      }
+      for (std::size_t n = 0; n < set.planets.size(); ++n) {
+        const int m = GearIndex(scene, set.planets[n]);
+        const double psi = set.planet_angles[n];
+        if (!centre[m]) {
+          place(m, *c0 + set.center_distance * Vector3(std::cos(psi), std::sin(psi), 0.0));
+        }
+      }
+    }
+  };
   while (!queue.empty()) {
     const int g = queue.front();
     queue.pop_front();
+    place_planetary(g);
     for (int k = 0; k < num_meshes; ++k) {
       if (mesh_done[k]) continue;
       const MeshDef& m = scene.meshes[k];
@@ -133,6 +166,24 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
     inertia.diametral_inertia = gear.transverse_inertia.value_or(0.5 * gear.inertia);
     body[g] = builder.AddBody(gear.name, CalcRigidBodyMassMatrix(inertia), out.centres[g]);
   }
+  for (const PlanetaryDef& set : scene.planetaries) {
+    builder.SetBodyRole(body[GearIndex(scene, set.sun)], BodyRole::kSun);
+    builder.SetBodyRole(body[GearIndex(scene, set.ring)], BodyRole::kRing);
+    builder.SetBodyRole(body[GearIndex(scene, set.carrier)], BodyRole::kCarrier);
+    for (const std::string& planet : set.planets) {
+      builder.SetBodyRole(body[GearIndex(scene, planet)], BodyRole::kPlanet);
+    }
+  }
+  // Mesh phase offsets of the planetary meshes (planetary.hpp), by mesh name.
+  std::map<std::string, double> phase_offsets;
+  for (const PlanetaryDef& set : scene.planetaries) {
+    const int sun_sign = PlanetarySunDriveSign(scene, set);
+    const PlanetaryMeshPhases phases = CalcPlanetaryMeshPhases(set, sun_sign);
+    for (std::size_t n = 0; n < set.planets.size(); ++n) {
+      phase_offsets[set.sun_meshes[n]] = phases.sun[n];
+      phase_offsets[set.ring_meshes[n]] = phases.ring[n];
+    }
+  }
 
   // ---- Bearings.
   for (const BearingDef& b : scene.bearings) {
@@ -172,7 +223,9 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
       out.warnings.push_back("mesh '" + m.name +
                              "': not connected to the operating point; phase ratio 1 assumed");
     }
-    builder.AddMesh(m.name, body[p], body[w], G, std::move(built.core), std::nullopt, ratio, 0.0);
+    const auto offset = phase_offsets.find(m.name);
+    builder.AddMesh(m.name, body[p], body[w], G, std::move(built.core), std::nullopt, ratio,
+                    offset != phase_offsets.end() ? offset->second : 0.0);
     out.mesh_angles.push_back(gamma[k]);
     out.drive_signs.push_back(built.drive_sign);
   }
@@ -190,7 +243,7 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
   }
 
   out.model = builder.Build();
-  if (options.planar) out.model = out.model.RestrictToPlanar();
+  if (options.planar || scene.planar) out.model = out.model.RestrictToPlanar();
   return out;
 }
 

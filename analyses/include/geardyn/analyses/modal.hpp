@@ -40,13 +40,33 @@
 ///
 /// **Labels.** A rigid-body mode is kRigidBody. Otherwise the dominant kinetic-energy kind gives
 /// kRotational (torsional θz), kTranslational (x, y), kAxial (z) or kRocking (θx, θy).
-/// Planetary-set labels (rotational / translational / planet modes of Lin & Parker, 1999) need
-/// to know which bodies are planets; until planetary scenes exist the multiplicity groups
-/// (modes whose frequencies agree within multiplicity_rel_tol) and the per-body kinetic fractions
-/// are reported so that a caller can apply them: a planet mode has all its kinetic energy in the
-/// planets (central members at rest) and multiplicity N − 3; a translational mode has
-/// multiplicity 2; a rotational mode has multiplicity 1 (Lin & Parker 1999, J. Sound Vib.
-/// 228(1)).
+/// The multiplicity groups (modes whose frequencies agree within multiplicity_rel_tol) and the
+/// per-body kinetic fractions are always reported.
+///
+/// **Planetary labels** (planetary_labels; only when the model's DofMap has bodies with
+/// BodyRole::kPlanet — the roles are data of the model, set by whoever built it). Lin & Parker
+/// 1999 (J. Sound Vib. 228(1) 109–128) show that a planetary set with N equally spaced identical
+/// planets and isotropic supports has exactly three kinds of modes: *rotational* (central members
+/// — sun, ring, carrier — only rotate, multiplicity 1), *translational* (central members only
+/// translate, multiplicity 2) and *planet* modes (central members at rest, multiplicity N − 3,
+/// only for N ≥ 4). For the planar model (x, y, θz per body) there are 6 rotational modes, 6
+/// pairs of translational modes and 3 planet-mode frequencies. For the 6-DOF model the same
+/// cyclic-symmetry argument (central members carry only the harmonics k = 0 and k = ±1 of the
+/// planet index) gives 12 rotational(-axial) modes (central members move only along and about the
+/// axis: z, θz), 12 translational(-tilting) pairs (central members only x, y, θx, θy) and 6
+/// planet-mode frequencies of multiplicity N − 3 when the meshes couple in-plane and axial motion
+/// (helical gears); with spur gears the out-of-plane motion decouples and the two in-phase planet
+/// tilt modes (k = 0) also leave the central members at rest: 10 rotational modes, 12 pairs,
+/// 4 planet frequencies of multiplicity N − 3 and 2 of multiplicity N − 2
+/// (tests/analyses/planetary_modes_test.cpp derives this). The label is
+/// decided per multiplicity group G from the basis-independent energies E_X = Σ_{k∈G} φ_kᵀ M_XX
+/// φ_k over three DOF sets X: the axial/torsional DOFs (z, θz) of every non-planet body, the
+/// lateral DOFs (x, y, θx, θy) of every non-planet body, and all planet DOFs (block-diagonal parts
+/// of M, as for the kinetic fractions). With E_c = E_axial + E_lateral and
+/// t = kPlanetaryEnergyTol: E_c ≤ t·E → kPlanet; else E_lateral ≤ t·E_c → kRotational; else
+/// E_axial ≤ t·E_c → kTranslational; else kMixed (the symmetry is broken: unequal spacing,
+/// anisotropic supports, a mistuned planet). Bodies with role kOther count as central members (on
+/// the axis). The multiplicities are not used to label; a symmetric set has the ones above.
 ///
 /// **Damped modes** (options.compute_damped): the state-space problem of M q̈ + C q̇ + K̄ q = 0
 /// with the M-symmetric scaling y = Lᵀ q (M = L Lᵀ), ẋ = A x, x = [y; ẏ/ω_s],
@@ -111,6 +131,22 @@ enum class ModeType {
 
 /// Stable name "rigid_body", "rotational", "translational", "axial", "rocking".
 const char* ToString(ModeType type);
+
+/// Relative energy below which a DOF set counts as at rest for the planetary labels (a
+/// kinetic-energy fraction; 1e-8 is an amplitude ratio of 1e-4, far above the round-off of the
+/// eigenvectors and far below any physical participation).
+inline constexpr double kPlanetaryEnergyTol = 1e-8;
+
+/// @brief Mode type of a planetary set (Lin & Parker 1999; see the file comment).
+enum class PlanetaryModeType {
+  kRotational,     ///< central members rotate / move axially only; multiplicity 1
+  kTranslational,  ///< central members translate / tilt only; multiplicity 2
+  kPlanet,         ///< central members at rest; multiplicity N − 3
+  kMixed,          ///< none of the above (the cyclic symmetry is broken)
+};
+
+/// Stable name "rotational", "translational", "planet", "mixed".
+const char* ToString(PlanetaryModeType type);
 
 /// @brief What the damping matrix is, relative to M and K̄ (see the file comment).
 enum class DampingKind {
@@ -189,6 +225,9 @@ struct ModalResult {
   std::vector<std::string> dof_names;
   /// (m) mode types; empty unless compute_energy_fractions.
   std::vector<ModeType> labels;
+  /// (m) planetary mode types (file comment); empty unless compute_energy_fractions and the
+  /// model has bodies with BodyRole::kPlanet.
+  std::vector<PlanetaryModeType> planetary_labels;
   /// Groups of mode indices (ascending) whose frequencies agree within multiplicity_rel_tol,
   /// one group per distinct frequency (singletons included), in frequency order.
   std::vector<std::vector<int>> multiplicity_groups;

@@ -58,6 +58,13 @@ enum class DofKind {
   kRotationTilt,           ///< θx, θy [rad] (rocking)
 };
 
+/// @brief What a body is in a planetary (epicyclic) gear set, for mode classification (Lin &
+/// Parker 1999: central members — sun, ring, carrier — lie on the set's axis; planets around it).
+/// kOther for every body that is not part of a planetary set.
+enum class BodyRole { kOther, kSun, kRing, kCarrier, kPlanet };
+/// "other", "sun", "ring", "carrier", "planet".
+const char* ToString(BodyRole role);
+
 /// Kind of component c ∈ [0, 6) of a body (x, y → transverse; z → axial; θx, θy → tilt; θz →
 /// torsional).
 DofKind DofKindOf(BodyDof component);
@@ -77,6 +84,11 @@ class DofMap {
   /// @throws InvalidInput on an empty or duplicate name.
   explicit DofMap(std::vector<std::string> body_names);
 
+  /// @brief The full map with a role per body (planetary sets; see BodyRole).
+  /// @param[in] body_roles one per body.
+  /// @throws InvalidInput as above, or when the sizes differ.
+  DofMap(std::vector<std::string> body_names, std::vector<BodyRole> body_roles);
+
   /// @brief The map restricted to some DOFs of this map (others held fixed).
   /// @param[in] dofs indices into THIS map, strictly increasing.
   /// @throws InvalidInput on an out-of-range or non-increasing index.
@@ -91,6 +103,10 @@ class DofMap {
 
   /// Name of body b. @throws InvalidInput if b is out of range.
   const std::string& body_name(BodyIndex b) const;
+  /// Role of body b (kOther unless set). @throws InvalidInput if b is out of range.
+  BodyRole body_role(BodyIndex b) const;
+  /// Number of bodies with role kPlanet.
+  int num_planets() const;
   /// The body called `name`, if any.
   std::optional<BodyIndex> FindBody(std::string_view name) const;
   /// The body called `name`. @throws InvalidInput naming it (and the known bodies) if absent.
@@ -118,6 +134,7 @@ class DofMap {
 
  private:
   std::vector<std::string> body_names_;
+  std::vector<BodyRole> body_roles_;  // one per body
   std::vector<BodyIndex> dof_body_;
   std::vector<BodyDof> dof_component_;
   std::vector<int> full_to_kept_;  // (6·num_bodies) kept index or −1

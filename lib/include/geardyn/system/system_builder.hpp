@@ -44,6 +44,11 @@ class SystemBuilder {
   BodyIndex AddBody(const std::string& name, const Matrix6& mass,
                     const Vector3& position = Vector3::Zero());
 
+  /// @brief Sets the planetary role of a body (DofMap::body_role; kOther by default). Data for
+  /// the analyses' mode classification only: it changes no matrix.
+  /// @throws InvalidInput on an unknown body.
+  void SetBodyRole(BodyIndex body, BodyRole role);
+
   /// @brief Adds a linear element to ground (one body, 6×6) or between two bodies (12×12).
   /// @param[in] stiffness (6×6 or 12×12) [N/m, N, N·m], symmetric PSD.
   /// @param[in] damping (same size) [N·s/m, …], symmetric PSD, or 0×0 for none.
@@ -97,6 +102,7 @@ class SystemBuilder {
     std::string name;
     Matrix6 mass;
     Vector3 position;
+    BodyRole role = BodyRole::kOther;
   };
   struct Load {
     std::string name;

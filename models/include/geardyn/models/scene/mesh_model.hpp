@@ -82,7 +82,9 @@ struct BuiltMeshCore {
 ///
 /// ISO 6336-1's stiffness for F_t K_A / b < 100 N/mm is scaled with the line load; the load is
 /// known when the operating point's body is one of the mesh's gears: K_A = 1 and F_t = |T|/r at
-/// that gear's reference radius r, b = the common face width. Otherwise (a gear further down a
+/// that gear's reference radius r, b = the common face width. A mesh of a planetary set carries
+/// F_t = |T_s| / (N r_s), T_s the sun torque equivalent to the operating point's torque on a
+/// central member (planetary.hpp). Otherwise (a gear further down a
 /// train) nullopt, and ISO's stiffness is used unscaled (as for line loads ≥ 100 N/mm). Also
 /// nullopt for a zero operating torque (the scaling would give a zero stiffness; an unloaded
 /// mesh is modelled with the unscaled value).

@@ -19,6 +19,15 @@
 /// the other (coaxial; the axial offset is not modelled); a gear connected to nothing is placed at
 /// the origin.
 ///
+/// **Planetary sets** (Scene::planetaries, planetary.hpp): when the walk reaches any member of a
+/// set, the whole set is placed: sun, ring and carrier on one centre c0, planet n at
+/// c0 + a_w (cos ψ_n, sin ψ_n, 0); the sun–planet meshes then have γ = ψ_n and the planet–ring
+/// meshes γ = ψ_n + π (closed loops; options.mesh_angles cannot name them). The bodies get their
+/// BodyRole (sun, ring, carrier, planet) for the planetary mode labels; the planet bearings are
+/// ordinary two-body bearings at the planet's centre, so their carrier-side point moves with the
+/// carrier's translation and rotation (CalcBearingMatrix). Phase offsets of the planetary meshes:
+/// CalcPlanetaryMeshPhases with the sun drive sign PlanetarySunDriveSign.
+///
 /// **Supports.** A [[bearing]] is the given 6×6 (K, C) acting at the body's centre: to ground
 /// directly, or between two bodies through CalcBearingMatrix at the body's centre (relative
 /// motion body − other).
@@ -28,7 +37,7 @@
 /// linear cores (the torsional level keeps only θz); the core from BuildMeshCore; the equivalent
 /// mass for a damping ratio computed by SystemBuilder from the bodies' masses; phase ratio =
 /// mesh frequency / first mesh's mesh frequency (Scene::MeshFrequencyHz; 1 when unknown), phase
-/// offset 0 (relative tooth phasing between meshes is not modelled yet).
+/// offset 0 except in planetary sets (above).
 ///
 /// **Loads.** External moments about +Z (θz): the operating-point torque on its body plus every
 /// [[load]] torque on its body; they all add (the scene gives them as applied torques, e.g. an
@@ -54,6 +63,7 @@ struct SceneSystemOptions {
   /// Centre of the operating point's body [m].
   Vector3 origin = Vector3::Zero();
   /// Keep only x, y and θz of every body (planar literature models): the others held fixed.
+  /// Scene::planar (the scene's top-level `planar = true`) does the same.
   bool planar = false;
   /// False (with the field and value in `why`) on a non-finite angle or origin.
   bool IsValid(std::string* why) const;

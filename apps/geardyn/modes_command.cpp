@@ -1,0 +1,63 @@
+// `geardyn modes SCENE`: the modes of the scene's mean (LTI) system (ComputeModes on
+// MakeSystemModel), printed as a mode-type table or JSON, and written to --out as modes.json,
+// modes.csv and (with --shapes) mode_shapes.csv.
+#include <memory>
+
+#include "geardyn/analyses/modal.hpp"
+#include "geardyn/cli.hpp"
+#include "geardyn/command.hpp"
+#include "geardyn/models/scene/scene_reader.hpp"
+#include "geardyn/models/system/scene_system.hpp"
+#include "geardyn/modes_report.hpp"
+#include "geardyn/output_files.hpp"
+
+namespace geardyn::app {
+namespace {
+
+struct ModesCommandOptions {
+  SceneCommandOptions scene;
+  ModesSettings settings;
+};
+
+int RunModes(const ModesCommandOptions& opts, std::ostream& out) {
+  const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
+  const SceneSystem built = BuildSceneSystem(scene);
+  const int n = built.model.num_dofs();
+  const ModalOptions options = MakeModesOptions(opts.settings, n);
+  const ModalResult result = ComputeModes(built.model, options);
+  const nlohmann::json report = MakeModesReport(scene.source, n, result, built.warnings);
+  const std::string json_text = report.dump(2) + "\n";
+  out << (opts.scene.json ? json_text : FormatModesText(report));
+  const std::string& dir = opts.scene.out_dir;
+  if (!dir.empty()) {
+    WriteOutputFile(dir, "modes.json", json_text);
+    WriteOutputFile(dir, "modes.csv", ModalResultToCsv(result));
+    if (opts.settings.shapes) {
+      WriteOutputFile(dir, "mode_shapes.csv", FormatModeShapesCsv(result));
+    }
+    if (!opts.scene.json) out << "written to " << dir << "\n";
+  }
+  return result.summary.ok() ? int{kExitOk} : int{kExitNumericalIssue};
+}
+
+}  // namespace
+
+Command AddModesCommand(CLI::App& app) {
+  auto opts = std::make_shared<ModesCommandOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "modes",
+      "natural frequencies, mode types and energy fractions of the mean (LTI) system of a scene");
+  AddSceneOptions(cmd, &opts->scene);
+  cmd->add_option("--modes", opts->settings.num_modes,
+                  "number of lowest modes (default 20; all when the system has fewer DOFs)");
+  cmd->add_option("--method", opts->settings.method,
+                  "eigen solver: auto (dense below 200 DOFs, else ARPACK), dense or arpack")
+      ->check(CLI::IsMember({"auto", "dense", "arpack"}));
+  cmd->add_flag("--shapes", opts->settings.shapes,
+                "include the mode shapes (JSON; mode_shapes.csv with --out)");
+  cmd->add_flag("--damped", opts->settings.damped,
+                "also compute the damped complex modes (frequency, damping ratio)");
+  return {cmd, [opts](std::ostream& out) { return RunModes(*opts, out); }};
+}
+
+}  // namespace geardyn::app
