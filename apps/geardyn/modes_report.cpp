@@ -107,7 +107,11 @@ std::string FormatModesText(const nlohmann::json& report) {
       const auto [owner, share] = Largest(mode["strain"]);
       if (!owner.empty()) strain = owner + " " + Percent(share);
     }
-    const std::string label = mode.contains("label") ? mode["label"].get<std::string>() : "—";
+    // Planetary sets: the Lin & Parker type (rotational/translational/planet) of the group.
+    const std::string label =
+        mode.contains("planetary_type")
+            ? mode["planetary_type"].get<std::string>()
+            : (mode.contains("label") ? mode["label"].get<std::string>() : "—");
     std::string group = std::to_string(mode.value("group", 0));
     if (mode["multiplicity"].get<int>() > 1) {
       group += " (×" + std::to_string(mode["multiplicity"].get<int>()) + ")";

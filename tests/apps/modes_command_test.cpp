@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -168,6 +169,23 @@ TEST(ModesCommandTest, OutWritesJsonCsvAndShapes) {
   ASSERT_EQ(i, 12);
   const MatrixX M = MakeSystemModel(LoadScene("builtin:helical-pair")).DenseMass();
   EXPECT_NEAR(phi.dot(M * phi), 1.0, 1e-12);
+}
+
+TEST(ModesCommandTest, PlanetarySceneReportsTheLinParkerModeTypes) {
+  // Planar model, 4 planets: 3 DOF × (sun, ring, carrier, 4 planets) = 21 modes; Lin & Parker
+  // (1999): 6 rotational (simple), 6 translational pairs, 3 planet modes of multiplicity N − 3 = 1.
+  const nlohmann::json report =
+      RunJson({"modes", "builtin:planetary-lin-parker", "--set", "planar=true", "--modes", "21"});
+  ASSERT_EQ(report["modes"].size(), 21u);
+  std::map<std::string, int> count;
+  for (const nlohmann::json& mode : report["modes"]) {
+    ASSERT_TRUE(mode.contains("planetary_type")) << mode.dump();
+    ++count[mode["planetary_type"].get<std::string>()];
+  }
+  EXPECT_EQ(count["rotational"], 6);
+  EXPECT_EQ(count["translational"], 12);
+  EXPECT_EQ(count["planet"], 3);
+  EXPECT_EQ(count["mixed"], 0);
 }
 
 TEST(ModesCommandTest, BadOptionsExitWithTwoAndAClearMessage) {

@@ -99,6 +99,10 @@ std::string ModalResultToJson(const ModalResult& r) {
     if (r.modal_damping_ratios.size() == m) {
       out << ", \"modal_damping_ratio\": " << Number(r.modal_damping_ratios(k));
     }
+    if (static_cast<Eigen::Index>(r.planetary_labels.size()) == m) {
+      out << ", \"planetary_type\": "
+          << Quote(ToString(r.planetary_labels[static_cast<std::size_t>(k)]));
+    }
     if (fractions) {
       out << ", \"label\": " << Quote(ToString(r.labels[static_cast<std::size_t>(k)]))
           << ", \"kinetic\": {";
@@ -155,7 +159,9 @@ std::string ModalResultToCsv(const ModalResult& r) {
   const bool fractions = r.kinetic_fractions.rows() == m && m > 0;
   const bool ratios = r.modal_damping_ratios.size() == m && m > 0;
   out << "mode,frequency_hz,eigenvalue,multiplicity";
+  const bool planetary = static_cast<Eigen::Index>(r.planetary_labels.size()) == m && m > 0;
   if (ratios) out << ",modal_damping_ratio";
+  if (planetary) out << ",planetary_type";
   if (fractions) {
     out << ",label";
     for (const DofKind kind : kKinds)
@@ -167,6 +173,7 @@ std::string ModalResultToCsv(const ModalResult& r) {
     out << k << "," << Number(r.frequencies_hz(k)) << "," << Number(r.eigenvalues(k)) << ","
         << mult[static_cast<std::size_t>(k)];
     if (ratios) out << "," << Number(r.modal_damping_ratios(k));
+    if (planetary) out << "," << ToString(r.planetary_labels[static_cast<std::size_t>(k)]);
     if (fractions) {
       out << "," << ToString(r.labels[static_cast<std::size_t>(k)]);
       for (const DofKind kind : kKinds) {
