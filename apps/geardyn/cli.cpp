@@ -48,7 +48,9 @@ int RunCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
 
   try {
     for (const Command& command : commands) {
-      if (command.cli->parsed()) return command.run(out);
+      if (command.cli->parsed()) {
+        return command.run_with_err ? command.run_with_err(out, err) : command.run(out);
+      }
     }
   } catch (const InvalidInput& e) {
     err << "geardyn: error: " << e.what() << "\n";

@@ -29,6 +29,8 @@ void AddSceneOptions(CLI::App* cmd, SceneCommandOptions* opts);
 struct Command {
   CLI::App* cli = nullptr;
   std::function<int(std::ostream& out)> run;
+  /// Used instead of `run` when set: for commands that also write progress to the error stream.
+  std::function<int(std::ostream& out, std::ostream& err)> run_with_err = nullptr;
 };
 
 /// A function that adds one subcommand to `app`.
@@ -38,9 +40,12 @@ using CommandFactory = Command (*)(CLI::App& app);
 const std::vector<CommandFactory>& CommandFactories();
 
 // One factory per subcommand (each in its own <name>_command.cpp).
+Command AddHbCommand(CLI::App& app);
 Command AddInfoCommand(CLI::App& app);
 Command AddMeshCommand(CLI::App& app);
 Command AddModesCommand(CLI::App& app);
 Command AddScenesCommand(CLI::App& app);
+Command AddFloquetCommand(CLI::App& app);
+Command AddStabilityChartCommand(CLI::App& app);
 
 }  // namespace geardyn::app

@@ -17,10 +17,8 @@ void AddSceneOptions(CLI::App* cmd, SceneCommandOptions* opts) {
 const std::vector<CommandFactory>& CommandFactories() {
   // One line per subcommand; keep the order of `geardyn --help`.
   static const std::vector<CommandFactory> factories = {
-      &AddInfoCommand,
-      &AddMeshCommand,
-      &AddModesCommand,
-      &AddScenesCommand,
+      &AddInfoCommand,    &AddScenesCommand,         &AddMeshCommand, &AddModesCommand,
+      &AddFloquetCommand, &AddStabilityChartCommand, &AddHbCommand,
   };
   return factories;
 }

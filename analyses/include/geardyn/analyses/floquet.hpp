@@ -1,0 +1,100 @@
+/// @file
+/// @brief Floquet stability of the homogeneous LTV gear system, `ComputeFloquet` (spec 02
+/// "Floquet", issue 5).
+///
+/// **Problem.** M q̈ + C(θ) q̇ + K(θ) q = 0 with θ = ω_m t (ω_m = 2π·mesh_frequency_hz), period
+/// T = 2π·P/ω_m [s] (P = SystemModel::period_meshes(): 1, or the hunting period when
+/// tooth-to-tooth errors are present). State x = [q; q̇] (2n), ẋ = A(t) x; the monodromy Φ(T)
+/// maps x(0) to x(T); its eigenvalues are the Floquet multipliers λ, the characteristic
+/// exponents are μ = ln(λ)/T [1/s] (principal branch). Unstable when max|λ| > 1.
+///
+/// **Methods** (FloquetMethod; kAuto picks the cheapest one that is exact or meets the
+/// tolerance — see the implementation's selection table in docs/design.md):
+/// | method | when | accuracy |
+/// |---|---|---|
+/// | kExactSteps | piecewise-constant K, C (HasPiecewiseConstantOperator) | round-off: Π expm(A_k
+/// Δt_k) | | kMagnus | smooth coefficients | high-order Magnus/exponential integrator with an error
+/// target | | kOdeStepper | always (the reference) | GSL odeiv2 on the 2n×2n fundamental matrix |
+/// | kHill | smooth, from the Fourier harmonics (system_harmonics.hpp) | truncation, selected
+/// exponents | | kModalProjection | large systems | projection on the lowest LTI modes, with an
+/// error estimate |
+///
+/// Reentrant; never prints; numerical trouble is reported in `summary`.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "geardyn/common/eigen_types.hpp"
+#include "geardyn/common/summary.hpp"
+#include "geardyn/system/system_model.hpp"
+
+namespace geardyn {
+
+/// @brief How the monodromy (or the multipliers) is computed.
+enum class FloquetMethod { kAuto, kExactSteps, kMagnus, kOdeStepper, kHill, kModalProjection };
+/// "auto", "exact_steps", "magnus", "ode_stepper", "hill", "modal_projection".
+const char* ToString(FloquetMethod method);
+
+/// @brief Options of ComputeFloquet.
+struct FloquetOptions {
+  FloquetMethod method = FloquetMethod::kAuto;
+  /// f_m [Hz] > 0: the tooth-mesh frequency (θ = 2π f_m t).
+  double mesh_frequency_hz = 0.0;
+  /// Error target [-]: on the relative error of Φ(T) for kMagnus and kOdeStepper (the multiplier
+  /// error then follows from their conditioning, see floquet_system.hpp), on the multipliers
+  /// (absolute, |λ| ~ 1) for kHill and kModalProjection.
+  double tolerance = 1e-10;
+  /// kHill: number of harmonics H (0 = chosen from the tolerance).
+  int hill_harmonics = 0;
+  /// kModalProjection: number of LTI modes kept (0 = chosen from the tolerance).
+  int num_modes = 0;
+  /// Keep the 2n×2n monodromy in the result (not formed by every method).
+  bool keep_monodromy = false;
+  /// kMagnus: order 4 (2 Gauss nodes) or 6 (3 Gauss nodes) [-].
+  int magnus_order = 6;
+  /// kMagnus: fixed number of steps per period (0 = chosen from the tolerance by step doubling;
+  /// a fixed count skips the error estimate: error_estimate is then the round-off estimate only).
+  int magnus_steps = 0;
+  /// kAuto: systems with at least this many DOFs (after the block split) use kModalProjection.
+  int modal_projection_min_dofs = 200;
+  /// Analyse the decoupled DOF blocks (SystemModel::blocks()) separately (exact: they do not
+  /// couple) and merge their multipliers.
+  bool split_blocks = true;
+  /// Deflate the rigid-body modes (common null space of K(t) and C(t)): each gives the exact double
+  /// multiplier 1 (a Jordan block) that a product or an eigen solver resolves only to √ε.
+  bool deflate_rigid_modes = true;
+  /// False (with the field and value in `why`) on an invalid value.
+  bool IsValid(std::string* why) const;
+};
+
+/// @brief Multipliers and verdict of one Floquet analysis.
+struct FloquetResult {
+  Summary summary;  ///< status, message, error_estimate (on the multipliers), counters, time
+  FloquetMethod method_used = FloquetMethod::kAuto;
+  std::int64_t period_meshes = 1;  ///< P [-]
+  double period_s = 0.0;           ///< T = 2πP/ω_m [s]
+  VectorXc multipliers;  ///< (2n, or fewer for kHill/kModalProjection) λ, by |λ| descending
+  VectorXc exponents;    ///< μ = ln(λ)/T [1/s], same order
+  double max_abs_multiplier = 0.0;  ///< max|λ| [-]
+  /// 1 − max|λ| [-]: positive when stable; for an undamped system (|λ| = 1 in stable regions)
+  /// compare with error_estimate.
+  double stability_margin = 0.0;
+  bool stable = true;  ///< max|λ| ≤ 1 + error_estimate
+  MatrixX monodromy;   ///< (2n×2n) Φ(T) when options.keep_monodromy and the method forms it
+};
+
+/// @brief Floquet multipliers of the model at the given mesh frequency (see the @file).
+/// @throws InvalidInput on invalid options, a model with a nonlinear core, or meshes at
+///   different frequencies (CheckSingleMeshFrequency).
+FloquetResult ComputeFloquet(const SystemModel& model, const FloquetOptions& options);
+
+namespace internal {
+/// @brief The method ComputeFloquet runs on `model` (never kAuto; kAuto: n ≥
+/// options.modal_projection_min_dofs → kModalProjection; piecewise-constant K, C (constant
+/// included: one interval, Φ = expm(A T)) → kExactSteps; otherwise kMagnus). With
+/// options.split_blocks it is applied to every block separately.
+FloquetMethod SelectFloquetMethod(const SystemModel& model, const FloquetOptions& options);
+}  // namespace internal
+
+}  // namespace geardyn

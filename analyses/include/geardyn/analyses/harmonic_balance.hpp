@@ -1,0 +1,184 @@
+/// @file
+/// @brief Linear harmonic balance of an assembled gear system: the steady-state periodic
+/// response of the LTV (or LTI) model and its DTE, mesh forces and bearing forces, at one mesh
+/// frequency (`SolveHarmonicBalance`, `HarmonicBalanceSolver`) or over a list of them
+/// (`SweepHarmonicBalance`) — spec 02 "Harmonic balance", issue 6 (linear half).
+///
+/// **Equation.** M q̈ + C(θ) q̇ + K(θ) q = f(θ) (system_model.hpp) with θ = ω_m t, ω_m = 2π f_m
+/// [rad/s] (f_m the tooth-mesh frequency [Hz]). The system is periodic in θ with period 2πP
+/// (P = SystemModel::period_meshes()), so the fundamental is Ω = ω_m / P [rad/s].
+///
+/// **Harmonic conventions** (shared with the nonlinear engine; system_harmonics.hpp):
+/// * K(θ) = Σ_m K_m e^{imθ/P}, C(θ) = Σ_m C_m e^{imθ/P}, f(θ) = Σ_m f_m e^{imθ/P}, X_{−m} =
+///   conj(X_m) (ExpandSystemHarmonics / ExpandMeshHarmonics);
+/// * q(t) = Σ_{k=−H..H} Q_k e^{ikΩt}, Q_{−k} = conj(Q_k) (real response); H counts harmonics of
+///   Ω = ω_m/P (H harmonics of the mesh frequency when P = 1). The amplitude of harmonic k ≥ 1
+///   is 2|Q_k| and q = Q_0 + 2 Σ_{k≥1} (Re Q_k cos kΩt − Im Q_k sin kΩt);
+/// * harmonic k of the equation (C(θ) q̇ couples with the velocity of the harmonic it acts on):
+///   \f[ −k²Ω² M Q_k + \sum_{j=−H}^{H} \big(K_{k−j} + i jΩ\, C_{k−j}\big) Q_j = F_k,
+///       \quad k = 0 … H; \f]
+/// * real layout of the unknowns and equations (LinearHbSystem, MakeLinearHbSystem):
+///   x = [Re Q_0; Re Q_1; Im Q_1; …; Re Q_H; Im Q_H] ((2H+1)·n reals), rows in the same order
+///   (real part of equation 0, then real and imaginary parts of equations 1 … H).
+///
+/// **Rigid-body modes.** A free gear train (no support about the axes) has K̄ r = 0; since K(θ) is
+/// PSD, K(θ) r = 0 for every θ and the mean part of Q_0 along r is undetermined. The solver fixes
+/// it as SolveStaticDeflection does: Q_0 orthogonal to the null space of K̄ in the coordinates
+/// scaled by √diag(K̄) (penalty W = D^{1/2} V Vᵀ D^{1/2} added to the k = 0 block), and the part of
+/// F_0 along it (a torque the supports cannot react) is removed with a warning. DTE, mesh and
+/// bearing forces do not depend on this choice.
+///
+/// **Methods** (HbMethod; kAuto picks one, reported in HbResult::method_used):
+/// | method | when (kAuto) | cost per frequency |
+/// |---|---|---|
+/// | kDecoupled | K and C constant in θ (LTI, e.g. mean-LTI cores): each harmonic alone, (−k²Ω²M +
+/// ikΩC̄ + K̄) Q_k = F_k | (H+1) n×n solves | | kCondensed | any LTV model: the θ-varying part is Σ
+/// Gᵀ ΔK2(θ) G of rank r ≤ 2·meshes; the block-diagonal LTI harmonics are solved (dense or sparse
+/// LU per harmonic, pattern analysed once) and the coupling is solved on the mesh deflections only
+/// (Woodbury: (I + R T) D = D⁰, R_k = G A_k⁻¹ Gᵀ, T the block Toeplitz of ΔK2_m, ΔC2_m), in the
+/// real layout | (H+1) LU of n×n + one dense LU of r(2H+1) | | kDirect | never (reference) | the
+/// full dense real system of MakeLinearHbSystem, ((2H+1)n)³ | All three are exact solutions of the
+/// same truncated equations (tests compare them).
+///
+/// **Accuracy knob.** HbOptions::harmonics = H, or 0 and a tolerance: H = min_harmonics,
+/// 2·min_harmonics, … until the change of the RMS DTE (max over meshes, relative to the largest
+/// RMS DTE) between H/2 and H is at most `tolerance`; the result reports H and that change as
+/// summary.error_estimate. With a fixed H the estimate is the RMS of the DTE harmonics in the top
+/// quarter (3H/4, H] relative to the largest RMS DTE (the size of the content near the
+/// truncation). Both are estimates, not bounds.
+///
+/// **Outputs** (from S time samples of the synthesized response per system period, FFTW c2r):
+/// per mesh DTE (probes.hpp: δ_η − ε_η) mean, RMS of the alternating part, peak-to-peak and the
+/// amplitudes of its harmonics 0 … H (FFT of the samples), the mesh force F_η = row η of
+/// K2(δ − ε) + C2 δ̇ (mean, RMS, peak-to-peak); per element the mean and RMS (alternating) of the
+/// six force components on its first body's coordinates (CalcElementForce).
+///
+/// **Slice cores** are used through their all-loaded linearization (workspace.hpp), with a
+/// warning; a NonlinearMeshCore is rejected (use the nonlinear engine). Reentrant; one
+/// HarmonicBalanceSolver per thread (it owns FFTW plans and factorizations; construct solvers
+/// from one thread at a time: FFTW planning is not thread-safe). Never prints.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geardyn/common/eigen_types.hpp"
+#include "geardyn/common/summary.hpp"
+#include "geardyn/system/system_model.hpp"
+
+namespace geardyn {
+
+/// @brief How the linear harmonic-balance equations are solved (see the @file table).
+enum class HbMethod { kAuto, kDecoupled, kCondensed, kDirect };
+/// "auto", "decoupled", "condensed", "direct".
+const char* ToString(HbMethod method);
+
+/// @brief Options of the linear harmonic balance.
+struct HbOptions {
+  HbMethod method = HbMethod::kAuto;
+  /// H ≥ 1: harmonics of Ω = ω_m/P kept; 0 = chosen from `tolerance`.
+  int harmonics = 0;
+  /// With harmonics = 0: accepted relative change of the RMS DTE between H/2 and H [-], > 0.
+  double tolerance = 1e-4;
+  /// First H of the tolerance search (≥ 1).
+  int min_harmonics = 8;
+  /// Largest H of the tolerance search (≥ min_harmonics); reaching it gives kToleranceNotMet.
+  int max_harmonics = 512;
+  /// S time samples per system period for the outputs; 0 = the smallest power of two ≥
+  /// max(256, 8(H+1)). Must exceed 2H when given.
+  int time_samples = 0;
+  /// Compute mesh forces and element forces (DTE always).
+  bool compute_forces = true;
+  /// Keep Q_k (n × (H+1)) and the DTE samples in the result.
+  bool keep_harmonics = false;
+  /// False (with the field, value and bound in `why`) on an invalid value.
+  bool IsValid(std::string* why) const;
+};
+
+/// @brief Steady-state outputs of one mesh.
+struct HbMeshOutput {
+  std::string name;
+  double mean_dte = 0.0;            ///< θ-mean of the DTE [m]
+  double rms_dte = 0.0;             ///< RMS of DTE − mean [m]
+  double peak_to_peak_dte = 0.0;    ///< max − min of the DTE samples [m]
+  VectorX dte_amplitudes;           ///< (H+1) |mean|, then 2|Y_k| of harmonic k = 1 … H [m]
+  double mean_force = 0.0;          ///< θ-mean of F_η [N] (> 0: compression)
+  double rms_force = 0.0;           ///< RMS of F_η − mean [N]
+  double peak_to_peak_force = 0.0;  ///< [N]
+};
+
+/// @brief Steady-state force of one element on its first body's six coordinates.
+struct HbElementOutput {
+  std::string name;
+  Vector6 mean_force = Vector6::Zero();  ///< [N, N·m] (CalcElementForce, components 0–5)
+  Vector6 rms_force = Vector6::Zero();   ///< RMS of the alternating part [N, N·m]
+};
+
+/// @brief Result at one mesh frequency.
+struct HbResult {
+  Summary summary;  ///< status, message, error_estimate (see @file), counters, warnings, time
+  HbMethod method_used = HbMethod::kAuto;
+  double mesh_frequency_hz = 0.0;         ///< f_m [Hz]
+  std::int64_t period_meshes = 1;         ///< P [-]
+  int harmonics = 0;                      ///< H used
+  int time_samples = 0;                   ///< S used
+  std::vector<HbMeshOutput> meshes;       ///< per mesh, model order
+  std::vector<HbElementOutput> elements;  ///< per element (empty unless compute_forces)
+  MatrixXc response_harmonics;            ///< (n × (H+1)) Q_k [m, rad] when keep_harmonics
+  MatrixX dte_samples;  ///< (meshes × S) DTE at θ_s = 2πP s/S [m] when keep_harmonics
+};
+
+/// @brief The full linear HB system in the real layout (see the @file): A x = b.
+struct LinearHbSystem {
+  MatrixX matrix;  ///< ((2H+1)n)² [N/m, …], rigid-body penalty included in the k = 0 block
+  VectorX rhs;     ///< ((2H+1)n) [N, N·m], unbalanced part of F_0 removed
+};
+
+/// @brief Assembles the dense LinearHbSystem at one mesh frequency (the kDirect path; the
+/// linear part of a nonlinear HB Jacobian).
+/// @throws InvalidInput on H < 1, f_m ≤ 0, a nonlinear core, or more than 6000 unknowns.
+LinearHbSystem MakeLinearHbSystem(const SystemModel& model, int harmonics,
+                                  double mesh_frequency_hz);
+
+/// Progress of a sweep: called after each point with (points done, total).
+using HbProgress = std::function<void(int done, int total)>;
+
+/// @brief A solver reusing its setup (harmonics of the model, rigid-body modes, probes, FFTW
+/// plans, sparse patterns) across frequencies (architecture §3.3 "solver object").
+class HarmonicBalanceSolver {
+ public:
+  /// @throws InvalidInput on invalid options, a NonlinearMeshCore, or meshes at different
+  ///   frequencies (CheckSingleMeshFrequency).
+  HarmonicBalanceSolver(const SystemModel& model, const HbOptions& options);
+  ~HarmonicBalanceSolver();
+  HarmonicBalanceSolver(const HarmonicBalanceSolver&) = delete;
+  HarmonicBalanceSolver& operator=(const HarmonicBalanceSolver&) = delete;
+
+  /// @brief The steady state at mesh frequency f_m [Hz] > 0.
+  /// @throws InvalidInput on a non-finite or non-positive f_m.
+  HbResult Solve(double mesh_frequency_hz);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// @brief HarmonicBalanceSolver(model, options).Solve(f_m).
+HbResult SolveHarmonicBalance(const SystemModel& model, const HbOptions& options,
+                              double mesh_frequency_hz);
+
+/// @brief Results of a frequency sweep.
+struct HbSweepResult {
+  std::vector<HbResult> points;  ///< one per frequency, in the given order
+  Summary summary;  ///< worst status of the points, counters summed, error_estimate = max
+};
+
+/// @brief One solver over every mesh frequency [Hz] (each > 0), calling `progress` after each.
+HbSweepResult SweepHarmonicBalance(const SystemModel& model,
+                                   const std::vector<double>& mesh_frequencies_hz,
+                                   const HbOptions& options, const HbProgress& progress = {});
+
+}  // namespace geardyn

@@ -1,0 +1,222 @@
+/// @file
+/// @brief Nonlinear harmonic balance (spec 02 "Harmonic balance", issue 6): periodic response of
+/// M q̈ + C q̇ + K q + Pᵀ g(P q, Ωt) = f₀ + Re(f₁ e^{iΩt}) with a clearance-type force g on a few
+/// "nonlinear coordinates" u = P q, by alternating frequency–time (AFT, FFTW), Newton with the
+/// analytic Jacobian, pseudo-arclength continuation in Ω and Floquet stability of every point.
+///
+/// ## Harmonic conventions (shared with the linear HB of harmonic_balance.hpp)
+/// * Base frequency ω = Ω / p, Ω the excitation frequency [rad/s, or dimensionless when the
+///   problem is], p = NhbOptions::period_multiple (1: period-1 response; 2: period-2
+///   sub-harmonic response).
+/// * u(t) = Σ_{k=−H..H} U_k e^{ikωt}, U_{−k} = conj(U_k): complex one-sided coefficients U_k,
+///   k = 0..H (U_0 real). The amplitude of harmonic k ≥ 1 is 2|U_k|. A cosine force
+///   F cos(Ωt + φ) has F_p = (F/2) e^{iφ}; f(t) = f₀ + Re(f₁ e^{iΩt}) has F_0 = f₀, F_p = f₁/2.
+/// * Harmonic k of the linear part: D_k = −k²ω² M + ikω C + K (the linear HB's convention).
+/// * Newton unknowns (real, harmonic-major, n = number of nonlinear coordinates):
+///   x = [U_0 (n), Re U_1 (n), Im U_1 (n), …, Re U_H (n), Im U_H (n)], size n(2H+1).
+///
+/// ## Condensation of the linear DOFs
+/// Only u enters the AFT/Newton loop: per harmonic, u's receptance R_k = P D_k⁻¹ Pᵀ gives the
+/// condensed residual Z_k U_k + N_k(U) − F̃_k = 0 with Z_k = R_k⁻¹ and F̃_k = Z_k P D_k⁻¹ F_k,
+/// N_k the Fourier coefficients of g(u(t), Ωt). When P is the identity (all DOFs nonlinear, e.g.
+/// the SDOF oscillator) Z_k = D_k directly. Condensation needs every D_k, k = 0..H, to be
+/// invertible (no rigid-body mode: write a gear pair in its relative coordinate); the problem is
+/// LTI outside g — time-varying stiffness belongs in g (as the parametric term of the B&K
+/// oscillator).
+///
+/// ## AFT
+/// S = max(64, samples_per_harmonic·H) samples per base period (rounded up to even), FFTW r2c/c2r
+/// plans made once per solver; S ≥ 4H+2 is required for the exact Toeplitz Jacobian and the
+/// oversampling keeps the aliasing of the kinked g small. Jacobian: dg/du sampled, transformed
+/// to its Fourier coefficients G_j (j = 0..2H), ∂N_k/∂U_m = G_{k−m} (the convolution/Toeplitz
+/// form), real-ified for the unknown layout above.
+///
+/// ## Stability
+/// Floquet multipliers μ of the periodic orbit (period T = 2π/ω) from the monodromy matrix of
+/// the variational equation y' = A(t) y, A = [0 I; −M⁻¹(K + Pᵀ ∂g/∂u(t) P)  −M⁻¹C] on the full
+/// 2N state, as the ordered product of exp(A(t_s) T/S) over the S AFT samples (midpoint rule,
+/// second order in 1/S for smooth ∂g/∂u; first order at the contact switches, where ∂g/∂u jumps).
+/// Stable iff max|μ| < 1. Alternative: Hill's method (NhbStabilityMethod::kHill), eigenvalues
+/// of the quadratic Hill problem of the HB Jacobian, keeping the 2N exponents with the smallest
+/// |Im λ| (the ones whose eigenvectors are centred on harmonic 0; the others are copies shifted
+/// by ±ikω) — only for P = I (uncondensed problems).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geardyn/common/eigen_types.hpp"
+#include "geardyn/common/summary.hpp"
+
+namespace geardyn {
+
+/// @brief Batched nonlinear force on the nonlinear coordinates: force g(u, φ) and ∂g/∂u at S
+/// samples in one call (one virtual call per state evaluation, never per sample).
+class NhbNonlinearLaw {
+ public:
+  virtual ~NhbNonlinearLaw() = default;
+  /// Number n of nonlinear coordinates.
+  virtual int num_coordinates() const = 0;
+  /// @param[in] u n×S samples of the nonlinear coordinates [problem units].
+  /// @param[in] phase S excitation phases φ_s = Ω t_s [rad].
+  /// @param[out] force n×S force g [force units] (pre-sized by the caller).
+  /// @param[out] jacobian (n·n)×S: column s is ∂g/∂u at sample s, column-major n×n.
+  virtual void Evaluate(const MatrixX& u, const VectorX& phase, MatrixX& force,
+                        MatrixX& jacobian) const = 0;
+  /// The linear law g ≈ K_c u + g_c valid in full contact, used for the initial guess.
+  virtual void ContactBranch(MatrixX& stiffness, VectorX& offset) const = 0;
+};
+
+/// @brief M q̈ + C q̇ + K q + Pᵀ g(P q, Ωt) = f₀ + Re(f₁ e^{iΩt}); N DOFs, n nonlinear coords.
+struct NhbProblem {
+  MatrixX mass;                                ///< M, N×N [kg or dimensionless].
+  MatrixX damping;                             ///< C, N×N.
+  MatrixX stiffness;                           ///< K, N×N (linear LTI part).
+  MatrixX projection;                          ///< P, n×N: u = P q.
+  VectorX force_mean;                          ///< f₀, N.
+  VectorXc force_amplitude;                    ///< f₁, N (complex amplitude at Ω).
+  std::shared_ptr<const NhbNonlinearLaw> law;  ///< g; law->num_coordinates() = n.
+  /// Sizes consistent, M invertible-looking (non-empty), law set; `why` names the field.
+  bool IsValid(std::string* why) const;
+  /// True when P is the N×N identity (no condensation).
+  bool IsUncondensed() const;
+};
+
+enum class NhbStabilityMethod { kNone, kMonodromy, kHill };
+
+/// @brief Options of the single-frequency solve (also used by the continuation).
+struct NhbOptions {
+  int harmonics = 0;                 ///< H ≥ 1; 0: chosen from harmonic_tolerance.
+  double harmonic_tolerance = 1e-6;  ///< H→2H relative RMS change target when harmonics = 0.
+  int max_harmonics = 256;           ///< Upper bound of the automatic H.
+  int period_multiple = 1;           ///< p ∈ {1, 2, …}: base ω = Ω/p (2: period-2 solutions).
+  int samples_per_harmonic = 16;     ///< AFT oversampling: S = max(64, this·H), even.
+  double newton_tolerance = 1e-10;   ///< ‖R‖∞ ≤ tol·(1 + ‖F̃‖∞ + ‖f₀‖∞).
+  int max_newton_iterations = 40;    ///< Newton iterations per solve.
+  NhbStabilityMethod stability = NhbStabilityMethod::kMonodromy;
+  bool IsValid(std::string* why) const;
+};
+
+/// @brief One periodic solution.
+struct NhbPoint {
+  double omega = 0.0;         ///< Excitation frequency Ω.
+  MatrixXc harmonics;         ///< n×(H+1): U_k, k = 0..H of base ω = Ω/p.
+  VectorX mean;               ///< n: U_0.
+  VectorX rms;                ///< n: RMS of u − U_0, √(2 Σ_{k≥1} |U_k|²).
+  VectorX peak_to_peak;       ///< n: max − min of u over the S AFT samples.
+  VectorX maximum;            ///< n: max of u over the samples.
+  VectorX minimum;            ///< n: min of u over the samples.
+  double error_estimate = 0;  ///< RMS of the top quarter of harmonics / RMS (all coordinates).
+  double tangent_omega = 0;   ///< dΩ/ds of the continuation tangent (0 for a single solve).
+  int branch = 0;             ///< Branch id: incremented at every fold.
+  bool stable = true;         ///< max |μ| < 1 (true when stability was not computed).
+  double max_multiplier = 0;  ///< max |μ| (0 when stability was not computed).
+  int newton_iterations = 0;  ///< Newton iterations of this point.
+  double residual_norm = 0;   ///< Final ‖R‖∞.
+  Status status = Status::kSuccess;
+};
+
+/// @brief Single-frequency result.
+struct NhbSolveResult {
+  NhbPoint point;
+  int harmonics_used = 0;  ///< H.
+  Summary summary;         ///< error_estimate: H→2H relative RMS change (auto H) or top energy.
+};
+
+/// @brief Pseudo-arclength continuation options.
+struct NhbContinuationOptions {
+  double omega_start = 0.5;          ///< First Ω (a solve from the contact-branch guess).
+  double omega_end = 1.5;            ///< The trace stops once Ω passes this value.
+  double initial_step = 0.01;        ///< Arclength step in scaled units (see below).
+  double min_step = 1e-6;            ///< Smaller step after failures → stop, kNotConverged.
+  double max_step = 0.05;            ///< Largest arclength step.
+  int max_points = 20000;            ///< Hard limit on points.
+  int max_corrector_iterations = 8;  ///< Corrector Newton iterations before a step is cut.
+  double max_tangent_angle = 0.15;   ///< Largest angle between successive tangents [rad].
+  /// Scaling of the arclength: s² = ‖Δx‖²/x_scale² + ΔΩ²/omega_scale²; 0 → automatic
+  /// (x_scale = max(‖x_start‖, 1e-12·…), omega_scale = |omega_end − omega_start|).
+  double x_scale = 0.0;
+  double omega_scale = 0.0;
+  bool IsValid(std::string* why) const;
+};
+
+/// @brief A fold (turning point): sign change of dΩ/ds, interpolated between two points.
+struct NhbFold {
+  double omega = 0.0;          ///< Ω at the fold.
+  double rms = 0.0;            ///< RMS of coordinate 0 at the fold.
+  double maximum = 0;          ///< max of coordinate 0 at the fold.
+  double minimum = 0;          ///< min of coordinate 0 at the fold.
+  int index = 0;               ///< Index of the point just before the fold.
+  bool omega_maximum = false;  ///< Ω has a local maximum here (an up-sweep jump point).
+};
+
+/// @brief A jump of a slow sweep: from the stable branch ending at a fold to another stable
+/// branch at the same Ω (the crossing nearest in RMS).
+struct NhbJump {
+  bool up_sweep = true;     ///< true: seen by an increasing-Ω sweep (fold with Ω maximum).
+  double omega = 0.0;       ///< Jump frequency (the fold's Ω).
+  double rms_before = 0.0;  ///< RMS of coordinate 0 on the branch that ends.
+  double rms_after = 0.0;   ///< RMS of coordinate 0 on the landing branch (NaN if none).
+  double max_before = 0.0;  ///< max of coordinate 0 before the jump.
+  double max_after = 0.0;   ///< max of coordinate 0 after the jump (NaN if none).
+};
+
+/// @brief A traced frequency-response curve.
+struct NhbCurve {
+  std::vector<NhbPoint> points;  ///< In arclength order.
+  std::vector<NhbFold> folds;
+  std::vector<NhbJump> jumps;
+  int harmonics_used = 0;  ///< H.
+  Summary summary;  ///< error_estimate: max point error_estimate; counters: points, newton, folds.
+};
+
+/// @brief Reusable solver for one problem and one H: FFTW plans and all scratch made once.
+/// One solver per thread. The functions below are thin wrappers around it.
+class NhbSolver {
+ public:
+  /// @throws InvalidInput for an invalid problem/options or harmonics < 1.
+  NhbSolver(NhbProblem problem, const NhbOptions& options, int harmonics);
+  ~NhbSolver();
+  NhbSolver(NhbSolver&&) noexcept;
+  NhbSolver& operator=(NhbSolver&&) noexcept;
+
+  int harmonics() const;     ///< H.
+  int samples() const;       ///< S.
+  int num_unknowns() const;  ///< n(2H+1).
+  const NhbProblem& problem() const;
+
+  /// Residual R(x, Ω) (size n(2H+1)), its Jacobian ∂R/∂x and ∂R/∂Ω (nullptr → skipped).
+  void Evaluate(const VectorX& x, double omega, VectorX* residual, MatrixX* jacobian,
+                VectorX* d_omega);
+  /// Initial guess at Ω: the linear contact-branch response.
+  VectorX ContactGuess(double omega);
+  /// Newton with backtracking line search from `x` (overwritten with the solution).
+  /// Returns the iteration count; `status`/`residual_norm` report convergence.
+  int Newton(VectorX& x, double omega, Status* status, double* residual_norm);
+  /// Fills omega, harmonics, mean, rms, peak_to_peak, max, min, error_estimate of `point`.
+  void Describe(const VectorX& x, double omega, NhbPoint& point);
+  /// Floquet multiplier of largest modulus (method per options).
+  double MaxMultiplier(const VectorX& x, double omega);
+  /// Harmonics vector x re-sized for H' harmonics (zero-padded or truncated).
+  static VectorX Resize(const VectorX& x, int n, int new_harmonics);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// @brief Periodic solution at one Ω, from the contact-branch guess (or `guess` when given for
+/// the resolved H). With options.harmonics = 0, H doubles from 4 until the relative RMS change
+/// from H to 2H is below options.harmonic_tolerance (reported as summary.error_estimate).
+NhbSolveResult SolveNonlinearHarmonicBalance(const NhbProblem& problem, double omega,
+                                             const NhbOptions& options = {});
+
+/// @brief Frequency-response curve by pseudo-arclength continuation in Ω with step control,
+/// fold detection, jump points and stability of every point. With options.harmonics = 0 the
+/// curve is traced with H = 8, 16, … until its largest per-point error estimate (energy in the
+/// top harmonics) is below options.harmonic_tolerance.
+NhbCurve TraceNonlinearHarmonicBalance(const NhbProblem& problem, const NhbOptions& options,
+                                       const NhbContinuationOptions& continuation);
+
+}  // namespace geardyn

@@ -1,0 +1,62 @@
+// kExactSteps: Φ(T) = Π_k expm(A_k Δt_k) for piecewise-constant coefficients (spec 02), exact up
+// to round-off. Consecutive equal steps are merged (expm(AΔt1) expm(AΔt2) = expm(A(Δt1+Δt2))); a
+// sequence that repeats with a sub-period of d steps (a hunting period made of identical mesh
+// cycles) is raised to its power by squaring.
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include "floquet/floquet_internal.hpp"
+#include "geardyn/common/check.hpp"
+
+namespace geardyn::internal {
+namespace {
+
+// Smallest d dividing the number of steps with step[i] == step[i + d] for all i.
+int RepeatingPeriod(const std::vector<double>& dt, const std::vector<const MatrixX*>& A,
+                    double period_s) {
+  const int K = static_cast<int>(dt.size());
+  for (int d = 1; d < K; ++d) {
+    if (K % d != 0) continue;
+    bool ok = true;
+    for (int i = 0; i + d < K && ok; ++i) {
+      ok = std::abs(dt[i] - dt[i + d]) <= 1e-13 * period_s &&
+           (A[i] == A[i + d] || *A[i] == *A[i + d]);
+    }
+    if (ok) return d;
+  }
+  return K;
+}
+
+}  // namespace
+
+MonodromyOutcome ExactStepsMonodromy(const StateSystem& sys) {
+  GEARDYN_THROW_UNLESS(!sys.step_matrices.empty(),
+                       "method: exact_steps needs piecewise-constant coefficients (steps)");
+  // Merge consecutive equal steps.
+  std::vector<double> dt;
+  std::vector<const MatrixX*> A;
+  for (std::size_t k = 0; k < sys.step_matrices.size(); ++k) {
+    if (!A.empty() && *A.back() == sys.step_matrices[k]) {
+      dt.back() += sys.step_durations[k];
+    } else {
+      dt.push_back(sys.step_durations[k]);
+      A.push_back(&sys.step_matrices[k]);
+    }
+  }
+  const int d = RepeatingPeriod(dt, A, sys.period_s);
+  const std::int64_t power = static_cast<std::int64_t>(dt.size()) / d;
+  MonodromyOutcome out;
+  ScaledMatrix cycle{MatrixX::Identity(sys.dim, sys.dim), 0.0};
+  for (int k = 0; k < d; ++k) {
+    const MatrixX E = (*A[k] * dt[k]).exp();
+    cycle.matrix = E * cycle.matrix;
+    cycle.Normalize();
+  }
+  long products = 0;
+  out.phi = power == 1 ? cycle : ScaledPower(cycle, power, &products);
+  out.steps = d;
+  out.evaluations = d;
+  out.num_factors = static_cast<double>(d) * static_cast<double>(power);
+  return out;
+}
+
+}  // namespace geardyn::internal

@@ -1,0 +1,138 @@
+/// @file
+/// @brief Internal pieces of the Floquet engine (analyses/src/floquet): the scaled first-order
+/// system, the monodromy kernels of each method and the multiplier post-processing.
+#pragma once
+
+#include <chrono>
+#include <complex>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "geardyn/analyses/floquet.hpp"
+#include "geardyn/analyses/floquet_system.hpp"
+#include "geardyn/common/eigen_types.hpp"
+
+namespace geardyn::internal {
+
+/// @brief A matrix carried as exp(log_scale)·matrix so that long products neither overflow nor
+/// underflow (the normalized matrix has max-abs entry 1 after Normalize()).
+struct ScaledMatrix {
+  MatrixX matrix;
+  double log_scale = 0.0;
+  /// Divides by the max-abs entry (if nonzero and finite) and adds its log to log_scale.
+  void Normalize();
+};
+
+/// @brief Φ^power by binary powering with normalization after every product (the hunting
+/// period made of identical cycles: O(log power) products).
+ScaledMatrix ScaledPower(const ScaledMatrix& base, std::int64_t power, long* products);
+
+/// @brief The scaled, rigid-deflated first-order system ż = A(t) z of a PeriodicSecondOrderSystem
+/// (floquet_system.hpp, steps 1–2).
+struct StateSystem {
+  int num_dofs = 0;       ///< n of the original system
+  int num_rigid = 0;      ///< r deflated rigid-body modes
+  int dim = 0;            ///< 2(n − r)
+  double period_s = 0.0;  ///< T [s]
+  double omega_s = 1.0;   ///< ω_s [1/s]
+  MatrixX basis;          ///< B = F L⁻ᵀ (n × (n−r)): q = R a + B y
+  MatrixX rigid;          ///< R (n × r)
+  MatrixX rigid_inverse;  ///< (RᵀMR)⁻¹RᵀM (r × n): a = rigid_inverse · q
+  MatrixX basis_inverse;  ///< L⁻¹FᵀM ((n−r) × n): y = basis_inverse · q
+
+  std::vector<double> step_durations;  ///< piecewise form: Δt_k [s]
+  std::vector<MatrixX> step_matrices;  ///< A_k (dim × dim)
+  /// A(t) into *A (dim × dim, sized by the caller); empty when the system has no callback/steps.
+  std::function<void(double t, MatrixX* A)> evaluate;
+  /// Hill: A_m, m = 0 … N (dim × dim), A(t) = Σ A_m e^{imΩt}.
+  std::vector<MatrixXc> harmonics;
+  std::vector<std::string> warnings;
+
+  /// Maps a monodromy of z to the monodromy of x = [q; q̇] (2n × 2n), rigid block included.
+  MatrixX ToOriginalMonodromy(const MatrixX& phi_z) const;
+};
+
+/// @brief Builds the StateSystem (validates the system; throws InvalidInput).
+StateSystem MakeStateSystem(const PeriodicSecondOrderSystem& system, bool deflate_rigid);
+
+/// @brief What a monodromy kernel returns.
+struct MonodromyOutcome {
+  ScaledMatrix phi;  ///< Φ(T) of z
+  /// Estimated relative error of Φ (‖δΦ‖/‖Φ‖, Frobenius) from truncation; the multiplier error
+  /// follows from it in SpectrumOf.
+  double truncation_error = 0.0;
+  double num_factors = 0.0;  ///< products/steps for the round-off estimate
+  long evaluations = 0;      ///< A(t) evaluations
+  long steps = 0;            ///< expm factors or accepted ODE steps
+  bool converged = true;
+  std::string message;
+};
+
+/// @brief kExactSteps: Π expm(A_k Δt_k), consecutive equal steps merged, a repeating pattern
+/// raised to its power by squaring.
+MonodromyOutcome ExactStepsMonodromy(const StateSystem& sys);
+/// @brief kMagnus: Gauss–Legendre Magnus of `order` (4, 6) on `steps` equal steps.
+MonodromyOutcome MagnusMonodromyFixed(const StateSystem& sys, int order, int steps);
+/// @brief kMagnus with the step count chosen from `tolerance` (Richardson on the multipliers).
+MonodromyOutcome MagnusMonodromy(const StateSystem& sys, int order, double tolerance);
+/// @brief kOdeStepper: GSL rk8pd on the fundamental matrix, two tolerances.
+MonodromyOutcome OdeMonodromy(const StateSystem& sys, double tolerance);
+
+/// @brief Multipliers and their estimated absolute errors from a scaled monodromy.
+struct Spectrum {
+  VectorXc multipliers;  ///< sorted by |λ| descending (finite unless they overflow double)
+  VectorXc exponents;    ///< μ = ln(λ)/T [1/s]
+  double roundoff = 0.0;
+};
+/// @brief Eigenvalues of phi with the round-off estimate (see floquet_system.hpp).
+/// `matrix_error`: relative truncation error of Φ added to the round-off δ.
+Spectrum SpectrumOf(const ScaledMatrix& phi, double period_s, double num_factors,
+                    double matrix_error = 0.0);
+/// ‖a − b‖/‖b‖ of two scaled matrices (Frobenius).
+double RelativeDifference(const ScaledMatrix& a, const ScaledMatrix& b);
+
+/// @brief kHill result on the StateSystem (selected exponents, error estimate H vs 3H/2).
+struct HillOutcome {
+  VectorXc exponents;  ///< selected μ (dim) [1/s]
+  double truncation_error = 0.0;
+  int harmonics = 0;
+  bool converged = true;
+  std::string message;
+};
+HillOutcome HillExponents(const StateSystem& sys, int harmonics, double tolerance);
+
+/// @brief Greatest distance between matched multipliers (greedy nearest matching of each of a
+/// to a distinct one of b; a.size() ≤ b.size()).
+double MatchedDistance(const VectorXc& a, const VectorXc& b);
+
+/// @brief Sorts λ by |λ| descending (ties by argument) and fills exponents.
+void SortSpectrum(VectorXc* multipliers, VectorXc* exponents);
+
+/// @brief Fills max|λ|, margin, verdict, status from multipliers and summary.error_estimate, and
+/// the 2r rigid multipliers 1 (appended before sorting).
+void FinishResult(int num_rigid, double tolerance, FloquetResult* result);
+
+/// @brief The generic engine on a StateSystem (no modal projection, no block split).
+FloquetResult ComputeFloquetState(const StateSystem& sys, const FloquetOptions& options,
+                                  FloquetMethod method);
+
+/// @brief kAuto on a generic system (see floquet_system.hpp).
+FloquetMethod SelectGenericMethod(const PeriodicSecondOrderSystem& system,
+                                  const FloquetOptions& options);
+
+/// @brief Projects a generic system on the M-orthonormal basis V (n × m): M_r = VᵀMV, K_r, C_r.
+PeriodicSecondOrderSystem ProjectSystem(const PeriodicSecondOrderSystem& system, const MatrixX& V);
+
+/// @brief kModalProjection on a generic system; `modes(m)` returns the lowest m M-orthonormal
+/// modes (n × m') of the mean system. Runs m and ⌈1.5m⌉ modes (see floquet.hpp).
+FloquetResult ModalProjectionFloquet(
+    const std::function<MatrixX(int)>& modes, int num_dofs,
+    const std::function<PeriodicSecondOrderSystem(const MatrixX&)>& project,
+    const FloquetOptions& options);
+
+/// Seconds since `start` (steady clock).
+double SecondsSince(const std::chrono::steady_clock::time_point& start);
+
+}  // namespace geardyn::internal

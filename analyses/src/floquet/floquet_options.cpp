@@ -1,0 +1,50 @@
+// FloquetOptions::IsValid and the method names.
+#include <cmath>
+#include <sstream>
+
+#include "geardyn/analyses/floquet.hpp"
+
+namespace geardyn {
+
+const char* ToString(FloquetMethod method) {
+  switch (method) {
+    case FloquetMethod::kAuto:
+      return "auto";
+    case FloquetMethod::kExactSteps:
+      return "exact_steps";
+    case FloquetMethod::kMagnus:
+      return "magnus";
+    case FloquetMethod::kOdeStepper:
+      return "ode_stepper";
+    case FloquetMethod::kHill:
+      return "hill";
+    case FloquetMethod::kModalProjection:
+      return "modal_projection";
+  }
+  return "unknown";
+}
+
+bool FloquetOptions::IsValid(std::string* why) const {
+  std::ostringstream os;
+  if (!(std::isfinite(mesh_frequency_hz) && mesh_frequency_hz > 0.0)) {
+    os << "mesh_frequency_hz: must be finite and > 0, got " << mesh_frequency_hz;
+  } else if (!(std::isfinite(tolerance) && tolerance > 0.0 && tolerance < 1.0)) {
+    os << "tolerance: must be in (0, 1), got " << tolerance;
+  } else if (hill_harmonics < 0) {
+    os << "hill_harmonics: must be >= 0, got " << hill_harmonics;
+  } else if (num_modes < 0) {
+    os << "num_modes: must be >= 0, got " << num_modes;
+  } else if (magnus_order != 4 && magnus_order != 6) {
+    os << "magnus_order: must be 4 or 6, got " << magnus_order;
+  } else if (magnus_steps < 0) {
+    os << "magnus_steps: must be >= 0, got " << magnus_steps;
+  } else if (modal_projection_min_dofs < 1) {
+    os << "modal_projection_min_dofs: must be >= 1, got " << modal_projection_min_dofs;
+  } else {
+    return true;
+  }
+  if (why != nullptr) *why = os.str();
+  return false;
+}
+
+}  // namespace geardyn

@@ -1,0 +1,98 @@
+/// @file
+/// @brief Internal pieces of the linear harmonic balance (harmonic_balance.hpp): the real layout
+/// of two-sided harmonic blocks, the rigid-body penalty, and the output sampler (FFTW).
+#pragma once
+
+#include <complex>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geardyn/analyses/harmonic_balance.hpp"
+#include "geardyn/common/eigen_types.hpp"
+#include "geardyn/system/probes.hpp"
+#include "geardyn/system/system_model.hpp"
+
+namespace geardyn::internal {
+
+using Complex = std::complex<double>;
+
+// ------------------------------------------------------------------ real layout
+
+/// @brief Adds the complex block B (b×b) coupling unknown harmonic j ∈ [−H, H] into equation
+/// k ∈ [0, H] to the real matrix A ((2H+1)b square) in the layout of harmonic_balance.hpp, using
+/// X_{−j} = conj(X_j): B X_j = B (a + i c) for j > 0, B (a − i c) for j < 0, B a for j = 0
+/// (X_0 real); equation 0 keeps its real part only.
+void AddRealBlock(int b, int k, int j, const MatrixXc& B, MatrixX* A);
+
+/// @brief [Re X_0; Re X_1; Im X_1; …] of the one-sided harmonics X_0 … X_H (each size b).
+VectorX ToRealLayout(const std::vector<VectorXc>& harmonics);
+
+/// @brief Inverse of ToRealLayout: column k of the result is X_k (b × (H+1)).
+MatrixXc FromRealLayout(const VectorX& x, int b, int harmonics);
+
+// ------------------------------------------------------------------ rigid-body modes
+
+/// @brief The rigid-body penalty of harmonic_balance.hpp: null space V of D^{-1/2} K̄ D^{-1/2},
+/// U = D^{1/2} V (penalty W = U Uᵀ) and Vs = D^{-1/2} V (F_0 ← F_0 − U Vsᵀ F_0).
+struct RigidModes {
+  MatrixX U;           ///< (n × r) [√(N/m)-like]
+  MatrixX Vs;          ///< (n × r)
+  VectorX inv_sqrt_d;  ///< (n) D^{-1/2}
+  int count() const { return static_cast<int>(U.cols()); }
+};
+
+/// @brief Rigid modes of the mean stiffness `mean_stiffness` (dense symmetric eigen-solve).
+/// @param[in] null_tol eigenvalues below null_tol·max count as zero.
+RigidModes ComputeRigidModes(const MatrixX& mean_stiffness, double null_tol = 1e-10);
+
+/// @brief Removes the unbalanced part of F_0 (in place); returns its size relative to F_0, both
+/// in the scaled coordinates D^{-1/2} f.
+double BalanceMeanLoad(const RigidModes& rigid, VectorXc* f0);
+
+// ------------------------------------------------------------------ model checks
+
+/// @brief Throws InvalidInput for a NonlinearMeshCore or a phase ratio ≠ 1; returns warnings
+/// (slice cores linearized).
+std::vector<std::string> CheckLinearHbModel(const SystemModel& model);
+
+/// @brief Smallest power of two ≥ max(256, 8(H+1)), or `requested` when > 0.
+int ChooseTimeSamples(int harmonics, int requested);
+
+// ------------------------------------------------------------------ outputs
+
+/// @brief Synthesizes q(θ_s), q̇(θ_s) from Q_k by FFTW c2r (plans made once per (n, S)) and
+/// evaluates the probes (DTE, mesh force, element forces) at the S samples.
+class HbOutputSampler {
+ public:
+  HbOutputSampler(const SystemModel& model, int harmonics, int time_samples);
+  ~HbOutputSampler();
+  HbOutputSampler(const HbOutputSampler&) = delete;
+  HbOutputSampler& operator=(const HbOutputSampler&) = delete;
+
+  /// @brief Fills result->meshes, result->elements (when forces), dte_samples (when keep).
+  /// @param[in] Q (n × (H+1)) one-sided harmonics. @param[in] omega Ω [rad/s].
+  /// @return max over meshes of the RMS DTE [m].
+  double Evaluate(const MatrixXc& Q, double omega, bool forces, bool keep, HbResult* result);
+
+  int time_samples() const { return S_; }
+
+ private:
+  struct Fft;
+  const SystemModel& model_;
+  int H_;
+  int S_;
+  std::unique_ptr<Fft> fft_;
+  ProbeWorkspace probe_ws_;
+  VectorX q_, v_;
+  std::vector<VectorX> element_force_;
+  MatrixX dte_, force_;  // (meshes × S)
+  MatrixX q_all_;        // (S × n) q samples
+  // Per linear-core mesh and sample (they do not depend on the frequency): K2, C2 and ε at
+  // θ_s, so that a sweep evaluates no coefficient; empty for slice cores (EvalMeshProbe).
+  std::vector<std::vector<Matrix2>> k2_, c2_;
+  std::vector<std::vector<Vector2>> eps_;
+};
+
+}  // namespace geardyn::internal

@@ -1,0 +1,96 @@
+/// @file
+/// @brief Alternating frequency–time kernel of NhbSolver: FFTW plans made once, harmonics →
+/// samples (c2r), samples → harmonics (r2c), and the Fourier coefficients of ∂g/∂u that form
+/// the Toeplitz Jacobian.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <utility>
+
+#include "nonlinear_hb/solver_impl.hpp"
+
+namespace geardyn {
+
+NhbSolver::Impl::Impl(NhbProblem problem_in, const NhbOptions& options_in, int harmonics)
+    : problem(std::move(problem_in)),
+      options(options_in),
+      cached_omega(std::numeric_limits<double>::quiet_NaN()) {
+  n = problem.law->num_coordinates();
+  dofs = static_cast<int>(problem.mass.rows());
+  H = harmonics;
+  p = options.period_multiple;
+  S = std::max(64, options.samples_per_harmonic * H);
+  S += S % 2;
+  m = n * (2 * H + 1);
+
+  time_buf = fftw_alloc_real(static_cast<size_t>(S));
+  freq_buf = fftw_alloc_complex(static_cast<size_t>(S / 2 + 1));
+  // FFTW_ESTIMATE: planning does not touch the buffers and takes microseconds.
+  r2c = fftw_plan_dft_r2c_1d(S, time_buf, freq_buf, FFTW_ESTIMATE);
+  c2r = fftw_plan_dft_c2r_1d(S, freq_buf, time_buf, FFTW_ESTIMATE);
+
+  phase.resize(S);
+  for (int s = 0; s < S; ++s) phase[s] = p * 2.0 * std::numbers::pi * s / S;
+  u.resize(n, S);
+  g.resize(n, S);
+  dg.resize(n * n, S);
+  g_h.resize(n, H + 1);
+  dg_h.assign(2 * H + 1, MatrixXc::Zero(n, n));
+  Z.assign(H + 1, MatrixXc::Zero(n, n));
+  dZ = Z;
+  F.assign(H + 1, VectorXc::Zero(n));
+  dF = F;
+  J.resize(m, m);
+  R.resize(m);
+  dx.resize(m);
+  x_trial.resize(m);
+  R_trial.resize(m);
+  lu = Eigen::PartialPivLU<MatrixX>(m);
+}
+
+NhbSolver::Impl::~Impl() {
+  if (r2c) fftw_destroy_plan(r2c);
+  if (c2r) fftw_destroy_plan(c2r);
+  fftw_free(time_buf);
+  fftw_free(freq_buf);
+}
+
+// u(t_s) = U_0 + Σ_{k=1..H} (U_k e^{ikωt_s} + c.c.): the unnormalised FFTW c2r of the one-sided
+// coefficients, zero above H.
+void NhbSolver::Impl::Synthesize(const VectorX& x) {
+  for (int i = 0; i < n; ++i) {
+    std::fill(&freq_buf[0][0], &freq_buf[0][0] + 2 * (S / 2 + 1), 0.0);
+    freq_buf[0][0] = x[Re(0, i)];
+    for (int k = 1; k <= H; ++k) {
+      freq_buf[k][0] = x[Re(k, i)];
+      freq_buf[k][1] = x[Im(k, i)];
+    }
+    fftw_execute(c2r);  // destroys freq_buf, refilled on the next call
+    for (int s = 0; s < S; ++s) u(i, s) = time_buf[s];
+  }
+}
+
+// N_k = (1/S) Σ_s g(t_s) e^{−ikωt_s}, k = 0..H.
+void NhbSolver::Impl::AnalyseForce() {
+  const double inv = 1.0 / S;
+  for (int i = 0; i < n; ++i) {
+    for (int s = 0; s < S; ++s) time_buf[s] = g(i, s);
+    fftw_execute(r2c);
+    for (int k = 0; k <= H; ++k) g_h(i, k) = {freq_buf[k][0] * inv, freq_buf[k][1] * inv};
+  }
+}
+
+// G_j = (1/S) Σ_s ∂g/∂u(t_s) e^{−ijωt_s}, j = 0..2H (needs S ≥ 4H + 2, checked by the options).
+void NhbSolver::Impl::AnalyseJacobian() {
+  const double inv = 1.0 / S;
+  for (int e = 0; e < n * n; ++e) {
+    const int a = e % n;
+    const int b = e / n;
+    for (int s = 0; s < S; ++s) time_buf[s] = dg(e, s);
+    fftw_execute(r2c);
+    for (int j = 0; j <= 2 * H; ++j) dg_h[j](a, b) = {freq_buf[j][0] * inv, freq_buf[j][1] * inv};
+  }
+}
+
+}  // namespace geardyn

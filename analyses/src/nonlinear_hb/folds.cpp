@@ -1,0 +1,102 @@
+/// @file
+/// @brief Fold and jump extraction. A fold lies between points i and i+1 where dΩ/ds changes
+/// sign; its Ω is the cubic Hermite interpolant of Ω(s) (values and slopes at both points) at
+/// the zero of the linearly interpolated slope; other quantities are interpolated linearly.
+/// A fold where Ω has a local maximum ends the branch an up-sweep follows (jump of an up-sweep),
+/// a local minimum one of a down-sweep. The landing branch is the stable crossing of Ω_fold
+/// (away from the fold's own segments) nearest in RMS.
+#include "nonlinear_hb/folds.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace geardyn::internal {
+namespace {
+
+double Lerp(double a, double b, double w) { return a + w * (b - a); }
+
+}  // namespace
+
+void FindFoldsAndJumps(NhbCurve& curve, const std::vector<double>& steps, double omega_scale) {
+  auto& pts = curve.points;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    if (i > 0 && (pts[i - 1].tangent_omega > 0) != (pts[i].tangent_omega > 0)) {
+      const NhbPoint& a = pts[i - 1];
+      const NhbPoint& b = pts[i];
+      const double ds = steps[i];
+      const double d0 = omega_scale * a.tangent_omega * ds;
+      const double d1 = omega_scale * b.tangent_omega * ds;
+      const double w = d0 / (d0 - d1);
+      const double h00 = 2 * w * w * w - 3 * w * w + 1, h10 = w * w * w - 2 * w * w + w;
+      const double h01 = -2 * w * w * w + 3 * w * w, h11 = w * w * w - w * w;
+      NhbFold fold;
+      fold.omega = h00 * a.omega + h10 * d0 + h01 * b.omega + h11 * d1;
+      fold.rms = Lerp(a.rms[0], b.rms[0], w);
+      fold.maximum = Lerp(a.maximum[0], b.maximum[0], w);
+      fold.minimum = Lerp(a.minimum[0], b.minimum[0], w);
+      fold.index = static_cast<int>(i - 1);
+      fold.omega_maximum = a.tangent_omega > 0;
+      curve.folds.push_back(fold);
+    }
+  }
+  // The AFT residual is only piecewise smooth (a sample crossing a kink of g), which can put
+  // micro-zigzags of ΔΩ ~ 1e-4 Ω near a fold. A consecutive pair of opposite folds closer than
+  // kFoldMergeTolerance·Ω is such an artefact and is removed (the surviving fold of the
+  // cluster keeps its position within that tolerance).
+  constexpr double kFoldMergeTolerance = 1e-3;
+  for (size_t i = 0; i + 1 < curve.folds.size();) {
+    const NhbFold& f0 = curve.folds[i];
+    const NhbFold& f1 = curve.folds[i + 1];
+    if (std::abs(f0.omega - f1.omega) < kFoldMergeTolerance * std::abs(f0.omega)) {
+      curve.folds.erase(curve.folds.begin() + i, curve.folds.begin() + i + 2);
+      if (i > 0) --i;
+    } else {
+      ++i;
+    }
+  }
+  int branch = 0;
+  size_t next = 0;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    if (next < curve.folds.size() && static_cast<int>(i) == curve.folds[next].index + 1) {
+      ++branch;
+      ++next;
+    }
+    pts[i].branch = branch;
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const NhbFold& fold : curve.folds) {
+    // Both branches meeting at the fold lie on the same side in Ω, the side a sweep comes
+    // from; the sweep arrives on the stable one (a fold between two unstable branches is not
+    // a jump of a slow sweep).
+    // Near a fold |μ| ≈ 1 and the flag may flicker: look at the points 2 steps away.
+    const NhbPoint& a = pts[std::max(fold.index - 2, 0)];
+    const NhbPoint& b = pts[std::min<size_t>(fold.index + 3, pts.size() - 1)];
+    if (!a.stable && !b.stable) continue;
+    NhbJump jump;
+    jump.up_sweep = fold.omega_maximum;
+    jump.omega = fold.omega;
+    jump.rms_before = fold.rms;
+    jump.max_before = fold.maximum;
+    jump.rms_after = nan;
+    jump.max_after = nan;
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i + 1 < pts.size(); ++i) {
+      if (static_cast<int>(i) >= fold.index - 1 && static_cast<int>(i) <= fold.index + 1) continue;
+      const NhbPoint& p = pts[i];
+      const NhbPoint& q = pts[i + 1];
+      if (!p.stable || !q.stable) continue;
+      if ((p.omega - fold.omega) * (q.omega - fold.omega) > 0 || p.omega == q.omega) continue;
+      const double w = (fold.omega - p.omega) / (q.omega - p.omega);
+      const double rms = Lerp(p.rms[0], q.rms[0], w);
+      if (std::abs(rms - fold.rms) < best) {
+        best = std::abs(rms - fold.rms);
+        jump.rms_after = rms;
+        jump.max_after = Lerp(p.maximum[0], q.maximum[0], w);
+      }
+    }
+    curve.jumps.push_back(jump);
+  }
+}
+
+}  // namespace geardyn::internal

@@ -1,0 +1,88 @@
+/// @file
+/// @brief Validation of NhbProblem and the nonlinear HB options.
+#include <cmath>
+#include <sstream>
+
+#include "geardyn/analyses/nonlinear_hb.hpp"
+
+namespace geardyn {
+namespace {
+
+bool Fail(std::string* why, const std::string& text) {
+  if (why) *why = text;
+  return false;
+}
+
+}  // namespace
+
+bool NhbProblem::IsValid(std::string* why) const {
+  if (!law) return Fail(why, "law: must be set");
+  const Eigen::Index N = mass.rows();
+  const Eigen::Index n = law->num_coordinates();
+  if (N < 1 || mass.cols() != N) return Fail(why, "mass: must be square and non-empty");
+  if (damping.rows() != N || damping.cols() != N) return Fail(why, "damping: must be N×N");
+  if (stiffness.rows() != N || stiffness.cols() != N) return Fail(why, "stiffness: must be N×N");
+  if (projection.rows() != n || projection.cols() != N) {
+    std::ostringstream s;
+    s << "projection: must be n×N = " << n << "×" << N << ", got " << projection.rows() << "×"
+      << projection.cols();
+    return Fail(why, s.str());
+  }
+  if (force_mean.size() != N) return Fail(why, "force_mean: must have N entries");
+  if (force_amplitude.size() != N) return Fail(why, "force_amplitude: must have N entries");
+  if (!mass.allFinite() || !damping.allFinite() || !stiffness.allFinite() ||
+      !projection.allFinite() || !force_mean.allFinite() || !force_amplitude.allFinite()) {
+    return Fail(why, "problem matrices and forces: must be finite");
+  }
+  return true;
+}
+
+bool NhbProblem::IsUncondensed() const {
+  return projection.rows() == projection.cols() &&
+         projection.isApprox(MatrixX::Identity(projection.rows(), projection.cols()), 0.0);
+}
+
+bool NhbOptions::IsValid(std::string* why) const {
+  std::ostringstream s;
+  if (harmonics < 0)
+    s << "harmonics: must be ≥ 0 (0 = automatic), got " << harmonics;
+  else if (!(harmonic_tolerance > 0))
+    s << "harmonic_tolerance: must be > 0, got " << harmonic_tolerance;
+  else if (max_harmonics < 1)
+    s << "max_harmonics: must be ≥ 1, got " << max_harmonics;
+  else if (period_multiple < 1)
+    s << "period_multiple: must be ≥ 1, got " << period_multiple;
+  else if (samples_per_harmonic < 4)
+    s << "samples_per_harmonic: must be ≥ 4 (exact Toeplitz Jacobian), got "
+      << samples_per_harmonic;
+  else if (!(newton_tolerance > 0))
+    s << "newton_tolerance: must be > 0, got " << newton_tolerance;
+  else if (max_newton_iterations < 1)
+    s << "max_newton_iterations: must be ≥ 1, got " << max_newton_iterations;
+  else
+    return true;
+  return Fail(why, s.str());
+}
+
+bool NhbContinuationOptions::IsValid(std::string* why) const {
+  std::ostringstream s;
+  if (!std::isfinite(omega_start) || !std::isfinite(omega_end) || omega_start == omega_end)
+    s << "omega_start/omega_end: must be finite and different";
+  else if (omega_start <= 0 || omega_end <= 0)
+    s << "omega_start/omega_end: must be > 0";
+  else if (!(min_step > 0) || !(initial_step >= min_step) || !(max_step >= initial_step))
+    s << "steps: need 0 < min_step ≤ initial_step ≤ max_step";
+  else if (max_points < 2)
+    s << "max_points: must be ≥ 2, got " << max_points;
+  else if (max_corrector_iterations < 1)
+    s << "max_corrector_iterations: must be ≥ 1";
+  else if (!(max_tangent_angle > 0))
+    s << "max_tangent_angle: must be > 0";
+  else if (x_scale < 0 || omega_scale < 0)
+    s << "x_scale/omega_scale: must be ≥ 0";
+  else
+    return true;
+  return Fail(why, s.str());
+}
+
+}  // namespace geardyn

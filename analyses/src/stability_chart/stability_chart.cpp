@@ -1,0 +1,189 @@
+// ComputeStabilityChart: options, axes, the parallel grid and the driver of the three steps
+// (stability_chart.hpp).
+#include "geardyn/analyses/stability_chart.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <sstream>
+
+#include "geardyn/common/errors.hpp"
+#include "stability_chart/chart_internal.hpp"
+
+namespace geardyn {
+
+double ChartAxis::Value(int i) const {
+  if (i <= 0) return lo;
+  if (i >= num_points - 1) return hi;
+  return lo + (hi - lo) * static_cast<double>(i) / static_cast<double>(num_points - 1);
+}
+
+bool ChartAxis::IsValid(const std::string& what, std::string* why) const {
+  std::ostringstream s;
+  if (num_points < 2) {
+    s << what << ": the number of points must be at least 2, got " << num_points;
+  } else if (!std::isfinite(lo) || !std::isfinite(hi)) {
+    s << what << ": the bounds must be finite, got " << lo << ":" << hi;
+  } else if (!(lo < hi)) {
+    s << what << ": the lower bound must be below the upper bound, got " << lo << ":" << hi;
+  } else {
+    return true;
+  }
+  if (why) *why = s.str();
+  return false;
+}
+
+bool StabilityChartOptions::IsValid(std::string* why) const {
+  std::ostringstream s;
+  if (num_threads < 0) {
+    s << "num_threads must be >= 0 (0 = all cores), got " << num_threads;
+  } else if (!(instability_threshold >= 0.0 && instability_threshold < 1.0)) {
+    s << "instability_threshold must be in [0, 1), got " << instability_threshold;
+  } else if (!(boundary_tolerance > 0.0 && boundary_tolerance < 1.0)) {
+    s << "boundary_tolerance must be in (0, 1), got " << boundary_tolerance;
+  } else if (first_mode_index < 0) {
+    s << "first_mode_index must be >= 0, got " << first_mode_index;
+  } else if (max_resonance_order < 1) {
+    s << "max_resonance_order must be >= 1, got " << max_resonance_order;
+  } else {
+    for (const std::vector<double>& row : natural_frequencies_hz) {
+      for (double f : row) {
+        if (!std::isfinite(f) || f < 0.0) {
+          s << "natural_frequencies_hz must be finite and >= 0, got " << f;
+          if (why) *why = s.str();
+          return false;
+        }
+      }
+    }
+    return true;
+  }
+  if (why) *why = s.str();
+  return false;
+}
+
+const char* ToString(ResonanceKind kind) {
+  switch (kind) {
+    case ResonanceKind::kPrincipal:
+      return "principal";
+    case ResonanceKind::kSumCombination:
+      return "sum_combination";
+    case ResonanceKind::kDifferenceCombination:
+      return "difference_combination";
+  }
+  return "unknown";
+}
+
+namespace internal {
+
+int ResolveThreadCount(int requested) {
+  return requested > 0 ? requested : std::max(1, omp_get_max_threads());
+}
+
+void ParallelFor(long n, int num_threads, const std::function<void(long i, int thread)>& body,
+                 const ChartProgressCallback& progress, const char* phase) {
+  std::atomic<long> done{0};
+  long first_error_index = n;
+  std::exception_ptr first_error;
+  const long step = std::max(1L, n / 100);
+  long next_report = step;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(num_threads)
+  for (long i = 0; i < n; ++i) {
+    try {
+      body(i, omp_get_thread_num());
+    } catch (...) {
+#pragma omp critical(geardyn_chart_error)
+      {
+        if (i < first_error_index) {
+          first_error_index = i;
+          first_error = std::current_exception();
+        }
+      }
+    }
+    const long d = ++done;
+    // Thread 0 is the calling thread: the callback never runs on a worker.
+    if (progress && omp_get_thread_num() == 0 && d >= next_report) {
+      next_report = d + step;
+      progress(ChartProgress{phase, d, n});
+    }
+  }
+  if (progress) progress(ChartProgress{phase, n, n});
+  if (first_error) std::rethrow_exception(first_error);
+}
+
+}  // namespace internal
+
+StabilityChartResult ComputeStabilityChart(const ChartAxis& x, const ChartAxis& y,
+                                           const ChartEvaluatorFactory& make_evaluator,
+                                           const StabilityChartOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  std::string why;
+  if (!x.IsValid("x axis", &why) || !y.IsValid("y axis", &why) || !options.IsValid(&why)) {
+    throw InvalidInput("ComputeStabilityChart: " + why);
+  }
+  if (!make_evaluator) throw InvalidInput("ComputeStabilityChart: make_evaluator is empty");
+  const std::size_t rows = options.natural_frequencies_hz.size();
+  if (rows != 0 && rows != 1 && rows != static_cast<std::size_t>(y.num_points)) {
+    throw InvalidInput("ComputeStabilityChart: natural_frequencies_hz must have 0, 1 or " +
+                       std::to_string(y.num_points) + " (y.num_points) lists, got " +
+                       std::to_string(rows));
+  }
+
+  const int threads = internal::ResolveThreadCount(options.num_threads);
+  std::vector<ChartEvaluator> evaluators;
+  evaluators.reserve(threads);
+  for (int t = 0; t < threads; ++t) evaluators.push_back(make_evaluator());
+
+  StabilityChartResult chart;
+  chart.x_axis = x;
+  chart.y_axis = y;
+  const long n = static_cast<long>(x.num_points) * y.num_points;
+  chart.max_abs_multiplier.assign(n, 0.0);
+  chart.error_estimate.assign(n, 0.0);
+  chart.mesh_frequency_hz.assign(n, 0.0);
+  chart.ok.assign(n, 0);
+  chart.stable.assign(n, 0);
+  chart.region.assign(n, -1);
+
+  // Step 1: the grid.
+  internal::ParallelFor(
+      n, threads,
+      [&](long i, int thread) {
+        const int ix = static_cast<int>(i % x.num_points);
+        const int iy = static_cast<int>(i / x.num_points);
+        const ChartPointResult r = evaluators[thread](ChartPoint{x.Value(ix), y.Value(iy), ix, iy});
+        const bool ok = r.ok && std::isfinite(r.max_abs_multiplier);
+        chart.max_abs_multiplier[i] = r.max_abs_multiplier;
+        chart.error_estimate[i] = r.error_estimate;
+        chart.mesh_frequency_hz[i] = r.mesh_frequency_hz;
+        chart.ok[i] = ok ? 1 : 0;
+        chart.stable[i] = ok && !internal::IsUnstable(r, options.instability_threshold) ? 1 : 0;
+      },
+      options.progress, "grid");
+
+  long failed = 0;
+  for (long i = 0; i < n; ++i) failed += chart.ok[i] ? 0 : 1;
+  chart.summary.counters["grid_points"] = n;
+  chart.summary.counters["evaluations"] = n;
+  chart.summary.counters["failed_points"] = failed;
+  chart.summary.counters["threads"] = threads;
+  if (failed > 0) {
+    chart.summary.status = Status::kNumericalIssue;
+    chart.summary.message = std::to_string(failed) + " of " + std::to_string(n) +
+                            " grid points failed (left out of the regions and curves)";
+  }
+
+  // Step 2: transition curves; step 3: regions and labels.
+  if (options.trace_curves) internal::TraceTransitionCurves(evaluators, options, &chart);
+  internal::FindRegions(options, &chart);
+  chart.summary.counters["regions"] = static_cast<long>(chart.regions.size());
+
+  chart.summary.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return chart;
+}
+
+}  // namespace geardyn

@@ -1,0 +1,152 @@
+// `geardyn floquet SCENE`: the Floquet multipliers of the scene's LTV system at its operating
+// point (ComputeFloquet on MakeSystemModel at the first mesh's frequency), printed as text or
+// JSON, and written to --out as floquet.json and multipliers.csv.
+#include <cmath>
+#include <iomanip>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "geardyn/analyses/floquet.hpp"
+#include "geardyn/cli.hpp"
+#include "geardyn/command.hpp"
+#include "geardyn/common/errors.hpp"
+#include "geardyn/models/scene/scene_reader.hpp"
+#include "geardyn/models/system/scene_system.hpp"
+#include "geardyn/output_files.hpp"
+
+namespace geardyn::app {
+namespace {
+
+constexpr FloquetMethod kMethods[] = {FloquetMethod::kAuto,   FloquetMethod::kExactSteps,
+                                      FloquetMethod::kMagnus, FloquetMethod::kOdeStepper,
+                                      FloquetMethod::kHill,   FloquetMethod::kModalProjection};
+
+struct FloquetCommandOptions {
+  SceneCommandOptions scene;
+  std::string method = "auto";
+  double tolerance = 1e-10;
+};
+
+FloquetMethod ParseMethod(const std::string& name) {
+  for (FloquetMethod m : kMethods) {
+    if (name == ToString(m)) return m;
+  }
+  throw InvalidInput("--method: unknown Floquet method '" + name + "'");
+}
+
+nlohmann::json MakeFloquetReport(const Scene& scene, const std::string& requested,
+                                 double mesh_frequency_hz, int num_dofs, const FloquetResult& r,
+                                 const std::vector<std::string>& scene_warnings) {
+  nlohmann::json multipliers = nlohmann::json::array();
+  for (Eigen::Index k = 0; k < r.multipliers.size(); ++k) {
+    const std::complex<double> l = r.multipliers[k];
+    const std::complex<double> mu = k < r.exponents.size() ? r.exponents[k] : 0.0;
+    multipliers.push_back({{"re", l.real()},
+                           {"im", l.imag()},
+                           {"abs", std::abs(l)},
+                           {"exponent_re", mu.real()},
+                           {"exponent_im", mu.imag()}});
+  }
+  nlohmann::json warnings = scene_warnings;
+  for (const std::string& w : r.summary.warnings) warnings.push_back(w);
+  return {{"scene", scene.source},
+          {"num_dofs", num_dofs},
+          {"mesh_frequency_hz", mesh_frequency_hz},
+          {"period_meshes", r.period_meshes},
+          {"period_s", r.period_s},
+          {"method_requested", requested},
+          {"method_used", ToString(r.method_used)},
+          {"max_abs_multiplier", r.max_abs_multiplier},
+          {"stability_margin", r.stability_margin},
+          {"stable", r.stable},
+          {"verdict", r.stable ? "stable" : "unstable"},
+          {"error_estimate", r.summary.error_estimate},
+          {"status", StatusName(r.summary.status)},
+          {"message", r.summary.message},
+          {"wall_time_s", r.summary.wall_time_s},
+          {"counters", r.summary.counters},
+          {"warnings", warnings},
+          {"multipliers", multipliers}};
+}
+
+std::string FormatFloquetText(const nlohmann::json& j) {
+  std::ostringstream s;
+  s << std::setprecision(10);
+  s << "Floquet: " << j["scene"].get<std::string>() << ", " << j["num_dofs"].get<int>()
+    << " DOFs, f_m = " << j["mesh_frequency_hz"].get<double>() << " Hz, period "
+    << j["period_meshes"].get<long>() << " mesh cycle(s) = " << j["period_s"].get<double>()
+    << " s\n"
+    << "method: " << j["method_used"].get<std::string>() << " (requested "
+    << j["method_requested"].get<std::string>() << "), error estimate "
+    << j["error_estimate"].get<double>() << ", status " << j["status"].get<std::string>();
+  if (!j["message"].get<std::string>().empty()) s << ": " << j["message"].get<std::string>();
+  s << "\nmax|λ| = " << j["max_abs_multiplier"].get<double>() << ", margin "
+    << j["stability_margin"].get<double>() << " → " << j["verdict"].get<std::string>() << "\n";
+  s << "  #   Re λ              Im λ              |λ|\n";
+  int k = 1;
+  for (const nlohmann::json& m : j["multipliers"]) {
+    s << std::setw(3) << k++ << "   " << std::setw(16) << m["re"].get<double>() << "  "
+      << std::setw(16) << m["im"].get<double>() << "  " << m["abs"].get<double>() << "\n";
+  }
+  for (const nlohmann::json& w : j["warnings"]) s << "warning: " << w.get<std::string>() << "\n";
+  return s.str();
+}
+
+std::string MultipliersCsv(const FloquetResult& r) {
+  std::ostringstream s;
+  s << std::setprecision(17) << "index,re,im,abs,exponent_re,exponent_im\n";
+  for (Eigen::Index k = 0; k < r.multipliers.size(); ++k) {
+    const std::complex<double> mu = k < r.exponents.size() ? r.exponents[k] : 0.0;
+    s << k + 1 << "," << r.multipliers[k].real() << "," << r.multipliers[k].imag() << ","
+      << std::abs(r.multipliers[k]) << "," << mu.real() << "," << mu.imag() << "\n";
+  }
+  return s.str();
+}
+
+int RunFloquet(const FloquetCommandOptions& opts, std::ostream& out) {
+  FloquetOptions options;
+  options.method = ParseMethod(opts.method);
+  options.tolerance = opts.tolerance;
+  const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
+  if (scene.meshes.empty()) throw InvalidInput(scene.source + ": the scene has no mesh");
+  const SceneSystem built = BuildSceneSystem(scene);
+  options.mesh_frequency_hz = scene.MeshFrequencyHz(scene.meshes[0]);
+  if (!(options.mesh_frequency_hz > 0.0)) {
+    throw InvalidInput(scene.source +
+                       ": the mesh frequency is 0 (operating_point.speed_rpm must be > 0)");
+  }
+  const FloquetResult result = ComputeFloquet(built.model, options);
+  const nlohmann::json report = MakeFloquetReport(scene, opts.method, options.mesh_frequency_hz,
+                                                  built.model.num_dofs(), result, built.warnings);
+  const std::string json_text = report.dump(2) + "\n";
+  out << (opts.scene.json ? json_text : FormatFloquetText(report));
+  const std::string& dir = opts.scene.out_dir;
+  if (!dir.empty()) {
+    WriteOutputFile(dir, "floquet.json", json_text);
+    WriteOutputFile(dir, "multipliers.csv", MultipliersCsv(result));
+    if (!opts.scene.json) out << "written to " << dir << "\n";
+  }
+  return result.summary.ok() ? int{kExitOk} : int{kExitNumericalIssue};
+}
+
+}  // namespace
+
+Command AddFloquetCommand(CLI::App& app) {
+  auto opts = std::make_shared<FloquetCommandOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "floquet",
+      "Floquet multipliers, max|λ|, stability margin and verdict of the scene's LTV system");
+  AddSceneOptions(cmd, &opts->scene);
+  std::vector<std::string> names;
+  for (FloquetMethod m : kMethods) names.push_back(ToString(m));
+  cmd->add_option("--method", opts->method,
+                  "auto, exact_steps, magnus, ode_stepper, hill or modal_projection (default auto)")
+      ->check(CLI::IsMember(names));
+  cmd->add_option("--tolerance", opts->tolerance,
+                  "error target on the multipliers (default 1e-10; not used by exact_steps)")
+      ->check(CLI::PositiveNumber);
+  return {cmd, [opts](std::ostream& out) { return RunFloquet(*opts, out); }};
+}
+
+}  // namespace geardyn::app

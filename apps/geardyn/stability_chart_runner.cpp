@@ -1,0 +1,247 @@
+#include "geardyn/stability_chart_runner.hpp"
+
+#include <atomic>
+#include <charconv>
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+#include "geardyn/analyses/modal.hpp"
+#include "geardyn/common/errors.hpp"
+#include "geardyn/models/scene/scene_reader.hpp"
+#include "geardyn/models/system/scene_system.hpp"
+
+namespace geardyn::app {
+namespace {
+
+// Shortest text that reads back as the same double (a valid TOML integer or float).
+std::string FormatValue(double v) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof(buf), v);
+  return std::string(buf, r.ptr);
+}
+
+std::string Override(const std::string& path, double value) {
+  return path + "=" + FormatValue(value);
+}
+
+std::string AxisText(const char* option, const ChartAxisSpec& a) {
+  return std::string(option) + " " + a.path + "=" + FormatValue(a.lo) + ":" + FormatValue(a.hi) +
+         ":" + std::to_string(a.num_points);
+}
+
+double ParseNumber(const std::string& option, const std::string& text, const std::string& part,
+                   const char* what) {
+  double v = 0.0;
+  const char* end = part.data() + part.size();
+  const auto r = std::from_chars(part.data(), end, v);
+  if (part.empty() || r.ec != std::errc() || r.ptr != end || !std::isfinite(v)) {
+    throw InvalidInput(option + " " + text + ": the " + what + " '" + part +
+                       "' is not a finite number");
+  }
+  return v;
+}
+
+// One scene state: its model, the first mesh's frequency and the speed it was built at.
+struct Built {
+  std::shared_ptr<const SystemModel> model;
+  double mesh_hz = 0.0;
+  double rpm = 0.0;
+  double hz_per_rpm() const { return rpm > 0.0 ? mesh_hz / rpm : 0.0; }
+};
+
+class ChartContext {
+ public:
+  explicit ChartContext(const SceneChartSettings& s) : s_(s) {
+    if (s.x.path == kSpeedPath) speed_axis_ = 1;
+    if (s.y.path == kSpeedPath) speed_axis_ = 2;
+  }
+
+  int speed_axis() const { return speed_axis_; }
+  long builds() const { return builds_.load(); }
+
+  Built Build(const std::vector<std::string>& extra) const {
+    std::vector<std::string> overrides = s_.overrides;
+    overrides.insert(overrides.end(), extra.begin(), extra.end());
+    const Scene scene = LoadScene(s_.scene, overrides);
+    if (scene.meshes.empty()) {
+      throw InvalidInput(scene.source + ": the scene has no mesh (a stability chart needs one)");
+    }
+    Built b;
+    b.model = std::make_shared<const SystemModel>(MakeSystemModel(scene));
+    b.mesh_hz = scene.MeshFrequencyHz(scene.meshes[0]);
+    b.rpm = scene.operating_point.speed * 60.0 / (2.0 * std::numbers::pi);
+    ++builds_;
+    return b;
+  }
+
+  // The model of the parameter value (speed on the other axis at its lower end, > 0).
+  Built BuildParameter(const ChartAxisSpec& param, double value, const ChartAxisSpec& speed) const {
+    return Build({Override(param.path, value), Override(speed.path, speed.lo)});
+  }
+
+  void BuildRows() {
+    if (speed_axis_ == 0) return;
+    const ChartAxisSpec& param = speed_axis_ == 1 ? s_.y : s_.x;
+    const ChartAxisSpec& speed = speed_axis_ == 1 ? s_.x : s_.y;
+    const ChartAxis axis{param.path, param.lo, param.hi, param.num_points};
+    rows_.clear();
+    for (int i = 0; i < axis.num_points; ++i) {
+      rows_.push_back(BuildParameter(param, axis.Value(i), speed));
+    }
+  }
+
+  const std::vector<Built>& rows() const { return rows_; }
+
+  ChartPointResult Evaluate(const ChartPoint& p) const {
+    double f_m = 0.0;
+    std::shared_ptr<const SystemModel> model;
+    if (speed_axis_ == 0) {
+      const Built b = Build({Override(s_.x.path, p.x), Override(s_.y.path, p.y)});
+      model = b.model;
+      f_m = b.mesh_hz;
+    } else {
+      const bool on_x = speed_axis_ == 1;
+      const int index = on_x ? p.iy : p.ix;
+      const double rpm = on_x ? p.x : p.y;
+      const Built b =
+          index >= 0 ? rows_[index]
+                     : BuildParameter(on_x ? s_.y : s_.x, on_x ? p.y : p.x, on_x ? s_.x : s_.y);
+      model = b.model;
+      f_m = b.hz_per_rpm() * rpm;
+    }
+    FloquetOptions options = s_.floquet;
+    options.mesh_frequency_hz = f_m;
+    const FloquetResult r = ComputeFloquet(*model, options);
+    ChartPointResult out;
+    out.max_abs_multiplier = r.max_abs_multiplier;
+    out.error_estimate = r.summary.error_estimate;
+    out.mesh_frequency_hz = f_m;
+    // A missed tolerance still gives a usable max|λ| (its error estimate widens the verdict).
+    out.ok = r.summary.ok() || r.summary.status == Status::kToleranceNotMet;
+    return out;
+  }
+
+ private:
+  const SceneChartSettings& s_;
+  int speed_axis_ = 0;  // 0 none, 1 x, 2 y
+  std::vector<Built> rows_;
+  mutable std::atomic<long> builds_{0};
+};
+
+std::vector<double> NaturalFrequencies(const SystemModel& model) {
+  ModalOptions options;
+  options.compute_energy_fractions = false;
+  const ModalResult modes = ComputeModes(model, options);
+  return {modes.frequencies_hz.data(), modes.frequencies_hz.data() + modes.frequencies_hz.size()};
+}
+
+}  // namespace
+
+ChartAxisSpec ParseChartAxis(const std::string& option, const std::string& text) {
+  const std::size_t eq = text.rfind('=');
+  if (eq == std::string::npos || eq == 0) {
+    throw InvalidInput(option + " " + text + ": expected PATH=LO:HI:N, e.g. " + option + " " +
+                       kSpeedPath + "=500:3000:50");
+  }
+  ChartAxisSpec a;
+  a.path = text.substr(0, eq);
+  const std::string range = text.substr(eq + 1);
+  const std::size_t c1 = range.find(':');
+  const std::size_t c2 = c1 == std::string::npos ? c1 : range.find(':', c1 + 1);
+  if (c2 == std::string::npos || range.find(':', c2 + 1) != std::string::npos) {
+    throw InvalidInput(option + " " + text + ": expected PATH=LO:HI:N (three fields after '=')");
+  }
+  a.lo = ParseNumber(option, text, range.substr(0, c1), "lower bound");
+  a.hi = ParseNumber(option, text, range.substr(c1 + 1, c2 - c1 - 1), "upper bound");
+  const std::string n = range.substr(c2 + 1);
+  int count = 0;
+  const auto r = std::from_chars(n.data(), n.data() + n.size(), count);
+  if (n.empty() || r.ec != std::errc() || r.ptr != n.data() + n.size()) {
+    throw InvalidInput(option + " " + text + ": the number of points '" + n +
+                       "' is not an integer");
+  }
+  a.num_points = count;
+  if (count < 2) {
+    throw InvalidInput(option + " " + text + ": the number of points must be at least 2, got " + n);
+  }
+  if (!(a.lo < a.hi)) {
+    throw InvalidInput(option + " " + text + ": the lower bound must be below the upper bound");
+  }
+  if (a.path == kSpeedPath && !(a.lo > 0.0)) {
+    throw InvalidInput(option + " " + text +
+                       ": the speed must be > 0 at every point (the mesh frequency must be "
+                       "positive)");
+  }
+  return a;
+}
+
+SceneChart ComputeSceneStabilityChart(const SceneChartSettings& settings) {
+  const ChartAxisSpec& x = settings.x;
+  const ChartAxisSpec& y = settings.y;
+  if (x.path == y.path) {
+    throw InvalidInput("--x and --y name the same scene path '" + x.path + "'");
+  }
+  ChartContext context(settings);
+
+  // Both ends of both axes must give a valid scene; name the axis whose value is rejected.
+  Built nominal;
+  for (const bool upper : {false, true}) {
+    const std::string ox = Override(x.path, upper ? x.hi : x.lo);
+    const std::string oy = Override(y.path, upper ? y.hi : y.lo);
+    try {
+      const Built b = context.Build({ox, oy});
+      if (!upper) nominal = b;
+    } catch (const SceneError& e) {
+      const std::string& spec = e.override_spec();
+      if (spec == ox) throw InvalidInput(AxisText("--x", x) + ": " + e.what());
+      if (spec == oy) throw InvalidInput(AxisText("--y", y) + ": " + e.what());
+      throw;
+    }
+  }
+  if (!(nominal.mesh_hz > 0.0)) {
+    throw InvalidInput(settings.scene +
+                       ": the mesh frequency is 0 at the lower ends of the axes (speed 0 rpm); "
+                       "set operating_point.speed_rpm > 0 or chart over it");
+  }
+  context.BuildRows();
+
+  SceneChart out;
+  out.speed_axis = context.speed_axis() == 1 ? "x" : context.speed_axis() == 2 ? "y" : "";
+  out.mesh_hz_per_rpm = nominal.hz_per_rpm();
+  out.natural_frequencies_hz = NaturalFrequencies(*nominal.model);
+
+  StabilityChartOptions options = settings.chart;
+  options.first_mode_index = 0;  // mode numbers as `geardyn modes` prints them
+  options.natural_frequencies_hz.clear();
+  if (context.speed_axis() == 1) {  // a model per y row: its own frequencies
+    for (const Built& row : context.rows()) {
+      options.natural_frequencies_hz.push_back(NaturalFrequencies(*row.model));
+    }
+  } else {
+    options.natural_frequencies_hz.push_back(out.natural_frequencies_hz);
+    if (context.speed_axis() == 0) {
+      out.warnings.push_back(
+          "no axis is operating_point.speed_rpm: every point builds its own model, and the "
+          "region labels use the natural frequencies at the axes' lower ends");
+    } else {
+      out.warnings.push_back(
+          "the model varies along x: the region labels use the natural frequencies at the "
+          "lower end of x");
+    }
+  }
+
+  const ChartAxis ax{x.path, x.lo, x.hi, x.num_points};
+  const ChartAxis ay{y.path, y.lo, y.hi, y.num_points};
+  const ChartContext& shared = context;
+  out.chart = ComputeStabilityChart(
+      ax, ay,
+      [&shared]() -> ChartEvaluator {
+        return [&shared](const ChartPoint& p) { return shared.Evaluate(p); };
+      },
+      options);
+  out.model_builds = context.builds();
+  return out;
+}
+
+}  // namespace geardyn::app

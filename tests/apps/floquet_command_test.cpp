@@ -1,0 +1,98 @@
+// `geardyn floquet`: the multipliers of a scene against a different Floquet method on the same
+// scene (the general GSL stepper), the undamped reciprocal-pair invariant, the files written and
+// the bad-input exits.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <complex>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "support/cli_run.hpp"
+
+namespace geardyn {
+namespace {
+
+using test::RunGeardyn;
+using test::RunJson;
+
+constexpr const char* kRig = "builtin:kahraman-blankenship-rig";
+
+std::vector<std::complex<double>> Multipliers(const nlohmann::json& j) {
+  std::vector<std::complex<double>> out;
+  for (const nlohmann::json& m : j["multipliers"]) {
+    out.emplace_back(m["re"].get<double>(), m["im"].get<double>());
+  }
+  return out;
+}
+
+TEST(FloquetCommand, SpurRigExactStepsAgreeWithTheOdeStepper) {
+  const nlohmann::json exact = RunJson({"floquet", kRig});
+  const nlohmann::json ode =
+      RunJson({"floquet", kRig, "--method", "ode_stepper", "--tolerance", "1e-9"});
+  EXPECT_EQ(exact["method_requested"], "auto");
+  EXPECT_EQ(exact["method_used"], "exact_steps");  // spur pair: piecewise-constant stiffness
+  EXPECT_EQ(ode["method_used"], "ode_stepper");
+  // 2400 rpm × 50 teeth / 60 = 2000 Hz (docs/scene-format.md, built-in scenes).
+  EXPECT_NEAR(exact["mesh_frequency_hz"].get<double>(), 2000.0, 1e-9);
+  const int n = exact["num_dofs"].get<int>();
+  ASSERT_EQ(exact["multipliers"].size(), static_cast<std::size_t>(2 * n));
+  const double tol = 1e-7 + ode["error_estimate"].get<double>();
+  EXPECT_NEAR(exact["max_abs_multiplier"].get<double>(), ode["max_abs_multiplier"].get<double>(),
+              tol);
+  // Every multiplier of the exact product has a partner in the stepper's set.
+  const auto a = Multipliers(exact), b = Multipliers(ode);
+  for (const auto& l : a) {
+    double nearest = 1e300;
+    for (const auto& m : b) nearest = std::min(nearest, std::abs(l - m));
+    EXPECT_LT(nearest, 1e-6) << l;
+  }
+}
+
+TEST(FloquetCommand, UndampedRigHasReciprocalMultiplierPairs) {
+  // The rig has no damping: Φ is symplectic, so 1/λ̄ is a multiplier whenever λ is, and the
+  // product of all multipliers is det Φ = 1.
+  const nlohmann::json j = RunJson({"floquet", kRig});
+  const auto l = Multipliers(j);
+  std::complex<double> product = 1.0;
+  for (const auto& x : l) product *= x;
+  EXPECT_NEAR(std::abs(product), 1.0, 1e-8);
+  for (const auto& x : l) {
+    double nearest = 1e300;
+    for (const auto& y : l) nearest = std::min(nearest, std::abs(1.0 / std::conj(x) - y));
+    EXPECT_LT(nearest, 1e-6) << x;
+  }
+  EXPECT_EQ(j["stable"].get<bool>(),
+            j["max_abs_multiplier"].get<double>() <= 1.0 + j["error_estimate"].get<double>());
+}
+
+TEST(FloquetCommand, TextOutputAndFiles) {
+  const std::filesystem::path dir =
+      std::filesystem::path(GEARDYN_BINARY_DIR) / "test_output" / "floquet_command";
+  std::filesystem::remove_all(dir);
+  const test::CliRun run = RunGeardyn({"floquet", kRig, "--out", dir.string()});
+  ASSERT_EQ(run.code, 0) << run.err;
+  EXPECT_NE(run.out.find("max|λ| = "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("method: exact_steps"), std::string::npos) << run.out;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "floquet.json"));
+  std::ifstream csv(dir / "multipliers.csv");
+  std::string line;
+  int lines = 0;
+  while (std::getline(csv, line)) ++lines;
+  EXPECT_EQ(lines, 1 + 2 * j["num_dofs"].get<int>());
+}
+
+TEST(FloquetCommand, BadInputExitsWithTwo) {
+  const test::CliRun method = RunGeardyn({"floquet", kRig, "--method", "rk4"});
+  EXPECT_EQ(method.code, app::kExitBadInput);
+  EXPECT_NE(method.err.find("--method"), std::string::npos) << method.err;
+  const test::CliRun tol = RunGeardyn({"floquet", kRig, "--tolerance", "-1"});
+  EXPECT_EQ(tol.code, app::kExitBadInput);
+  const test::CliRun speed = RunGeardyn({"floquet", kRig, "--set", "operating_point.speed_rpm=0"});
+  EXPECT_EQ(speed.code, app::kExitBadInput);
+  EXPECT_NE(speed.err.find("mesh frequency is 0"), std::string::npos) << speed.err;
+}
+
+}  // namespace
+}  // namespace geardyn
