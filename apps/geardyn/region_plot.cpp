@@ -5,37 +5,12 @@
 #include <sstream>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/svg_text.hpp"
 
 namespace geardyn::app {
 namespace {
 
 constexpr int kLeft = 90, kRight = 30, kTop = 50, kBottom = 60;
-
-// Tick step 1, 2 or 5 × 10^k giving about `target` intervals (Heckbert's nice numbers).
-double NiceStep(double span, int target) {
-  const double raw = span / target;
-  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-  const double f = raw / mag;
-  return (f < 1.5 ? 1.0 : f < 3.0 ? 2.0 : f < 7.0 ? 5.0 : 10.0) * mag;
-}
-
-std::string Escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    out += c == '<'   ? std::string("&lt;")
-           : c == '>' ? std::string("&gt;")
-           : c == '&' ? std::string("&amp;")
-                      : std::string(1, c);
-  }
-  return out;
-}
-
-std::string Number(double v) {
-  std::ostringstream s;
-  s.precision(4);
-  s << (std::abs(v) < 1e-300 ? 0.0 : v);
-  return s.str();
-}
 
 // Maps a data interval [lo, hi] onto pixels [p0, p1].
 struct Scale {
@@ -71,7 +46,7 @@ std::string RenderRegionSvg(const RegionPlotSpec& spec) {
     << spec.height << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
     << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
     << "<text x=\"" << spec.width / 2 << "\" y=\"24\" text-anchor=\"middle\" font-size=\"15\">"
-    << Escape(spec.title) << "</text>\n<g shape-rendering=\"crispEdges\">\n";
+    << EscapeSvgText(spec.title) << "</text>\n<g shape-rendering=\"crispEdges\">\n";
   for (std::size_t iy = 0; iy < ny; ++iy) {
     for (std::size_t ix = 0; ix < nx; ++ix) {
       const std::size_t i = iy * nx + ix;
@@ -86,9 +61,10 @@ std::string RenderRegionSvg(const RegionPlotSpec& spec) {
         const double g = log_max > 0.0 ? std::log(spec.max_abs_multiplier[i]) / log_max : 1.0;
         opacity = 0.3 + 0.6 * std::clamp(std::sqrt(std::max(g, 0.0)), 0.0, 1.0);
       }
-      s << "<rect x=\"" << Number(x0) << "\" y=\"" << Number(y0) << "\" width=\""
-        << Number(x1 - x0 + 0.5) << "\" height=\"" << Number(y1 - y0 + 0.5) << "\" fill=\"" << fill
-        << "\" fill-opacity=\"" << Number(opacity) << "\"/>\n";
+      s << "<rect x=\"" << FormatTickNumber(x0) << "\" y=\"" << FormatTickNumber(y0)
+        << "\" width=\"" << FormatTickNumber(x1 - x0 + 0.5) << "\" height=\""
+        << FormatTickNumber(y1 - y0 + 0.5) << "\" fill=\"" << fill << "\" fill-opacity=\""
+        << FormatTickNumber(opacity) << "\"/>\n";
     }
   }
   s << "</g>\n";
@@ -99,50 +75,53 @@ std::string RenderRegionSvg(const RegionPlotSpec& spec) {
   s << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << right - left << "\" height=\""
     << bottom - top << "\" fill=\"none\" stroke=\"black\"/>\n";
   const auto ticks = [&](const Scale& sc, bool horizontal) {
-    const double step = NiceStep(sc.hi - sc.lo, 8);
+    const double step = NiceTickStep(sc.hi - sc.lo, 8);
     for (double v = std::ceil(sc.lo / step) * step; v <= sc.hi + 1e-9 * step; v += step) {
       const double p = sc(v);
       if (horizontal) {
-        s << "<line x1=\"" << Number(p) << "\" y1=\"" << bottom << "\" x2=\"" << Number(p)
-          << "\" y2=\"" << bottom + 5 << "\" stroke=\"black\"/><text x=\"" << Number(p) << "\" y=\""
-          << bottom + 18 << "\" text-anchor=\"middle\">" << Number(v) << "</text>\n";
+        s << "<line x1=\"" << FormatTickNumber(p) << "\" y1=\"" << bottom << "\" x2=\""
+          << FormatTickNumber(p) << "\" y2=\"" << bottom + 5 << "\" stroke=\"black\"/><text x=\""
+          << FormatTickNumber(p) << "\" y=\"" << bottom + 18 << "\" text-anchor=\"middle\">"
+          << FormatTickNumber(v) << "</text>\n";
       } else {
-        s << "<line x1=\"" << left - 5 << "\" y1=\"" << Number(p) << "\" x2=\"" << left
-          << "\" y2=\"" << Number(p) << "\" stroke=\"black\"/><text x=\"" << left - 8 << "\" y=\""
-          << Number(p + 4) << "\" text-anchor=\"end\">" << Number(v) << "</text>\n";
+        s << "<line x1=\"" << left - 5 << "\" y1=\"" << FormatTickNumber(p) << "\" x2=\"" << left
+          << "\" y2=\"" << FormatTickNumber(p) << "\" stroke=\"black\"/><text x=\"" << left - 8
+          << "\" y=\"" << FormatTickNumber(p + 4) << "\" text-anchor=\"end\">"
+          << FormatTickNumber(v) << "</text>\n";
       }
     }
   };
   ticks(sx, true);
   ticks(sy, false);
   s << "<text x=\"" << (left + right) / 2 << "\" y=\"" << spec.height - 15
-    << "\" text-anchor=\"middle\">" << Escape(spec.x_label) << "</text>\n"
+    << "\" text-anchor=\"middle\">" << EscapeSvgText(spec.x_label) << "</text>\n"
     << "<text transform=\"translate(18," << (top + bottom) / 2
-    << ") rotate(-90)\" text-anchor=\"middle\">" << Escape(spec.y_label) << "</text>\n";
+    << ") rotate(-90)\" text-anchor=\"middle\">" << EscapeSvgText(spec.y_label) << "</text>\n";
 
   // Resonance markers, transition curves, labels (in this order: labels stay readable).
   for (const RegionPlotMarker& m : spec.markers) {
     if (m.x < sx.lo || m.x > sx.hi) continue;
     const double p = sx(m.x);
-    s << "<line x1=\"" << Number(p) << "\" y1=\"" << top << "\" x2=\"" << Number(p) << "\" y2=\""
-      << bottom << "\" stroke=\"#555\" stroke-dasharray=\"4,4\"/><text x=\"" << Number(p)
-      << "\" y=\"" << top - 6 << "\" text-anchor=\"middle\" font-size=\"10\">" << Escape(m.text)
-      << "</text>\n";
+    s << "<line x1=\"" << FormatTickNumber(p) << "\" y1=\"" << top << "\" x2=\""
+      << FormatTickNumber(p) << "\" y2=\"" << bottom
+      << "\" stroke=\"#555\" stroke-dasharray=\"4,4\"/><text x=\"" << FormatTickNumber(p)
+      << "\" y=\"" << top - 6 << "\" text-anchor=\"middle\" font-size=\"10\">"
+      << EscapeSvgText(m.text) << "</text>\n";
   }
   for (const RegionPlotCurve& c : spec.curves) {
     if (c.x.empty()) continue;
     s << "<" << (c.closed ? "polygon" : "polyline") << " fill=\"none\" stroke=\"black\" "
       << "stroke-width=\"1.5\" points=\"";
     for (std::size_t k = 0; k < c.x.size() && k < c.y.size(); ++k) {
-      s << (k ? " " : "") << Number(sx(c.x[k])) << "," << Number(sy(c.y[k]));
+      s << (k ? " " : "") << FormatTickNumber(sx(c.x[k])) << "," << FormatTickNumber(sy(c.y[k]));
     }
     s << "\"/>\n";
   }
   for (const RegionPlotLabel& l : spec.labels) {
-    s << "<text x=\"" << Number(sx(l.x)) << "\" y=\"" << Number(sy(l.y))
+    s << "<text x=\"" << FormatTickNumber(sx(l.x)) << "\" y=\"" << FormatTickNumber(sy(l.y))
       << "\" text-anchor=\"middle\" font-weight=\"bold\" stroke=\"white\" stroke-width=\"3\" "
          "paint-order=\"stroke\">"
-      << Escape(l.text) << "</text>\n";
+      << EscapeSvgText(l.text) << "</text>\n";
   }
   s << "</svg>\n";
   return s.str();

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/svg_text.hpp"
 
 namespace geardyn::app {
 namespace {
@@ -41,37 +42,6 @@ struct Range {
   }
 };
 
-// Tick step 1, 2 or 5 × 10^k giving about `target` intervals (Heckbert's nice numbers).
-double NiceStep(double span, int target) {
-  const double raw = span / target;
-  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
-  const double f = raw / mag;
-  return (f < 1.5 ? 1.0 : f < 3.0 ? 2.0 : f < 7.0 ? 5.0 : 10.0) * mag;
-}
-
-std::string Escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '<') {
-      out += "&lt;";
-    } else if (c == '>') {
-      out += "&gt;";
-    } else if (c == '&') {
-      out += "&amp;";
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
-
-std::string Number(double v) {
-  std::ostringstream s;
-  s.precision(4);
-  s << (std::abs(v) < 1e-300 ? 0.0 : v);
-  return s.str();
-}
-
 }  // namespace
 
 std::string RenderSvg(const PlotSpec& spec) {
@@ -95,8 +65,8 @@ std::string RenderSvg(const PlotSpec& spec) {
       << height << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
       << "<text x=\"" << spec.width / 2 << "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">"
-      << Escape(spec.title) << "</text>\n";
-  const double x_step = NiceStep(xr.hi - xr.lo, 8);
+      << EscapeSvgText(spec.title) << "</text>\n";
+  const double x_step = NiceTickStep(xr.hi - xr.lo, 8);
   for (int i = 0; i < n; ++i) {
     const PlotPanel& panel = spec.panels[i];
     const double top = kTop + i * (spec.panel_height + kGap);
@@ -111,24 +81,24 @@ std::string RenderSvg(const PlotSpec& spec) {
     };
     svg << "<rect x=\"" << kLeft << "\" y=\"" << top << "\" width=\"" << plot_w << "\" height=\""
         << spec.panel_height << "\" fill=\"none\" stroke=\"black\"/>\n";
-    const double y_step = NiceStep(yr.hi - yr.lo, 5);
+    const double y_step = NiceTickStep(yr.hi - yr.lo, 5);
     for (double t = std::ceil(yr.lo / y_step) * y_step; t <= yr.hi + 1e-9 * y_step; t += y_step) {
       svg << "<line x1=\"" << kLeft << "\" x2=\"" << kLeft + plot_w << "\" y1=\"" << py(t)
           << "\" y2=\"" << py(t) << "\" stroke=\"#ddd\"/>"
           << "<text x=\"" << kLeft - 6 << "\" y=\"" << py(t) + 4 << "\" text-anchor=\"end\">"
-          << Number(t) << "</text>\n";
+          << FormatTickNumber(t) << "</text>\n";
     }
     for (double t = std::ceil(xr.lo / x_step) * x_step; t <= xr.hi + 1e-9 * x_step; t += x_step) {
       svg << "<line x1=\"" << px(t) << "\" x2=\"" << px(t) << "\" y1=\"" << top << "\" y2=\""
           << bottom << "\" stroke=\"#eee\"/>";
       if (i == n - 1) {
         svg << "<text x=\"" << px(t) << "\" y=\"" << bottom + 16 << "\" text-anchor=\"middle\">"
-            << Number(t) << "</text>";
+            << FormatTickNumber(t) << "</text>";
       }
       svg << "\n";
     }
     svg << "<text transform=\"translate(18," << (top + bottom) / 2
-        << ") rotate(-90)\" text-anchor=\"middle\">" << Escape(panel.y_label) << "</text>\n";
+        << ") rotate(-90)\" text-anchor=\"middle\">" << EscapeSvgText(panel.y_label) << "</text>\n";
     for (size_t k = 0; k < panel.series.size(); ++k) {
       const PlotSeries& s = panel.series[k];
       const char* colour = kColours[k % kColours.size()];
@@ -147,12 +117,12 @@ std::string RenderSvg(const PlotSpec& spec) {
       if (!s.label.empty()) {
         svg << "<text x=\"" << kLeft + plot_w - 8 << "\" y=\""
             << top + 16 + 15 * static_cast<int>(k) << "\" text-anchor=\"end\" fill=\"" << colour
-            << "\">" << Escape(s.label) << "</text>\n";
+            << "\">" << EscapeSvgText(s.label) << "</text>\n";
       }
     }
   }
   svg << "<text x=\"" << kLeft + plot_w / 2 << "\" y=\"" << height - 12
-      << "\" text-anchor=\"middle\">" << Escape(spec.x_label) << "</text>\n</svg>\n";
+      << "\" text-anchor=\"middle\">" << EscapeSvgText(spec.x_label) << "</text>\n</svg>\n";
   return svg.str();
 }
 
