@@ -23,6 +23,7 @@
 #include "geardyn/analyses/modal.hpp"
 #include "geardyn/models/elements/shaft_beam.hpp"
 #include "geardyn/system/system_builder.hpp"
+#include "modes_benchmark_body.hpp"
 
 namespace geardyn {
 namespace {
@@ -46,40 +47,8 @@ SystemModel MakeShaft(int num_elements) {
   return b.Build();
 }
 
-ModalOptions Options(ModalMethod method, int n) {
-  ModalOptions o;
-  o.method = method;
-  o.num_modes = std::min(20, n / 2);
-  return o;
-}
-
 void BM_ComputeModes(benchmark::State& state, ModalMethod method) {
-  const SystemModel model = MakeShaft(static_cast<int>(state.range(0)));
-  const int n = model.num_dofs();
-  ModalResult r;
-  for (auto _ : state) {
-    r = ComputeModes(model, Options(method, n));
-    benchmark::DoNotOptimize(r.eigenvalues.data());
-  }
-  if (!r.summary.ok() || r.method_used != method) {
-    state.SkipWithError(("not ok or wrong method: " + r.summary.BriefReport()).c_str());
-    return;
-  }
-  state.counters["dofs"] = n;
-  state.counters["modes"] = static_cast<double>(r.eigenvalues.size());
-  if (r.summary.counters.count("operator_applications") != 0) {
-    state.counters["ops"] = static_cast<double>(r.summary.counters.at("operator_applications"));
-  }
-  if (method == ModalMethod::kArpack && n <= 1100) {
-    const ModalResult dense = ComputeModes(model, Options(ModalMethod::kDense, n));
-    double worst = 0.0;
-    for (Eigen::Index k = 0; k < r.eigenvalues.size(); ++k) {
-      if (dense.eigenvalues(k) > 0.0) {
-        worst = std::max(worst, std::abs(r.eigenvalues(k) / dense.eigenvalues(k) - 1.0));
-      }
-    }
-    state.counters["rel_diff"] = worst;
-  }
+  bench::RunModesBenchmark(state, MakeShaft(static_cast<int>(state.range(0))), method);
 }
 
 void DenseSizes(benchmark::internal::Benchmark* b) {
