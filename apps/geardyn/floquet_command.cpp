@@ -18,14 +18,16 @@
 namespace geardyn::app {
 namespace {
 
-constexpr FloquetMethod kMethods[] = {FloquetMethod::kAuto,   FloquetMethod::kExactSteps,
-                                      FloquetMethod::kMagnus, FloquetMethod::kOdeStepper,
-                                      FloquetMethod::kHill,   FloquetMethod::kModalProjection};
+constexpr FloquetMethod kMethods[] = {
+    FloquetMethod::kAuto,           FloquetMethod::kExactSteps, FloquetMethod::kMagnus,
+    FloquetMethod::kOdeStepper,     FloquetMethod::kHill,       FloquetMethod::kModalProjection,
+    FloquetMethod::kArpackMonodromy};
 
 struct FloquetCommandOptions {
   SceneCommandOptions scene;
   std::string method = "auto";
   double tolerance = 1e-10;
+  int nev = 6;
 };
 
 FloquetMethod ParseMethod(const std::string& name) {
@@ -108,6 +110,7 @@ int RunFloquet(const FloquetCommandOptions& opts, std::ostream& out) {
   FloquetOptions options;
   options.method = ParseMethod(opts.method);
   options.tolerance = opts.tolerance;
+  options.arpack_nev = opts.nev;
   const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
   if (scene.meshes.empty()) throw InvalidInput(scene.source + ": the scene has no mesh");
   const SceneSystem built = BuildSceneSystem(scene);
@@ -140,12 +143,16 @@ Command AddFloquetCommand(CLI::App& app) {
   AddSceneOptions(cmd, &opts->scene);
   std::vector<std::string> names;
   for (FloquetMethod m : kMethods) names.push_back(ToString(m));
-  cmd->add_option("--method", opts->method,
-                  "auto, exact_steps, magnus, ode_stepper, hill or modal_projection (default auto)")
+  cmd->add_option(
+         "--method", opts->method,
+         "auto, exact_steps, magnus, ode_stepper, hill, modal_projection or arpack_monodromy "
+         "(default auto)")
       ->check(CLI::IsMember(names));
   cmd->add_option("--tolerance", opts->tolerance,
                   "error target on the multipliers (default 1e-10; not used by exact_steps)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--nev", opts->nev,
+                  "arpack_monodromy: number of largest-|λ| multipliers (default 6, <= 2n)");
   return {cmd, [opts](std::ostream& out) { return RunFloquet(*opts, out); }};
 }
 

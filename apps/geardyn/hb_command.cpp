@@ -1,27 +1,46 @@
-// `geardyn hb SCENE`: the steady-state DTE of the scene's linear model over a list of mesh
-// frequencies (SweepHarmonicBalance on MakeSystemModel), printed as a table or JSON, and written
-// to --out as hb.json, hb.csv and hb_rms_dte.svg.
+// `geardyn hb SCENE`: the steady-state DTE of the scene over mesh frequency, printed as a table or
+// JSON and written to --out.
 //
-// Nonlinear hook: when the nonlinear engine (contact loss, analyses/nonlinear_hb*.hpp) exists,
-// RunHb should call it for scenes whose model has slice or nonlinear cores
-// (model.time_dependence() == kNonlinear) unless --linear is given. Until then slice meshes use
-// their all-loaded linearization and the library reports that in the warnings.
+// * Nonlinear (the default when the built model has slice meshes, model.time_dependence() ==
+//   kNonlinear; forced by --nonlinear): TraceSystemNonlinearHb (contact loss and back-flank
+//   contact) by pseudo-arclength continuation over lo..hi of --mesh-frequency; the n of lo:hi:n
+//   is the resolution: the largest continuation step is 1/n of the range in the engine's scaled
+//   arclength (ΔΩ/(Ω_hi − Ω_lo) ≤ 1/n per step), so the curve has at least about n points, more
+//   near resonances and folds. One frequency: a single periodic solution. Files nhb.json,
+//   nhb.csv, nhb_rms_dte.svg (nhb_report.hpp).
+// * Linear (--linear, or no slice mesh): SweepHarmonicBalance on the listed frequencies (slice
+//   meshes linearized with every slice loaded). Files hb.json, hb.csv, hb_rms_dte.svg.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <memory>
+#include <numbers>
 
 #include "geardyn/analyses/harmonic_balance.hpp"
+#include "geardyn/analyses/system_nonlinear_hb.hpp"
 #include "geardyn/cli.hpp"
 #include "geardyn/command.hpp"
+#include "geardyn/common/check.hpp"
 #include "geardyn/hb_report.hpp"
 #include "geardyn/models/scene/scene_reader.hpp"
 #include "geardyn/models/system/scene_system.hpp"
+#include "geardyn/nhb_report.hpp"
 #include "geardyn/output_files.hpp"
 
 namespace geardyn::app {
 namespace {
 
+constexpr int kNonlinearDefaultHarmonics = 24;
+// Minimum time between two --progress lines of the nonlinear trace [s].
+constexpr double kProgressInterval = 0.5;
+
 struct HbCommandOptions {
   SceneCommandOptions scene;
   HbSettings settings;
+  bool nonlinear = false;               // --nonlinear
+  std::string stability = "monodromy";  // --stability
+  CLI::Option* tolerance_option = nullptr;
 };
 
 // The scene's first mesh frequency [Hz], 0 when it has no meshes or no speed.
@@ -30,18 +49,108 @@ double NominalMeshFrequency(const Scene& scene) {
   return scene.MeshFrequencyHz(scene.meshes.front());
 }
 
-int RunHb(const HbCommandOptions& opts, std::ostream& out, std::ostream& err) {
-  const HbOptions options = MakeHbOptions(opts.settings);
-  const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
-  const std::vector<double> frequencies =
-      ParseMeshFrequencies(opts.settings.mesh_frequency, NominalMeshFrequency(scene));
-  const SceneSystem built = BuildSceneSystem(scene);
+NhbStabilityMethod StabilityMethod(const std::string& name) {
+  if (name == "none") return NhbStabilityMethod::kNone;
+  if (name == "hill") return NhbStabilityMethod::kHill;
+  return NhbStabilityMethod::kMonodromy;
+}
+
+// Writes the report of either mode to `out` and the three files to --out.
+void Emit(const HbCommandOptions& opts, const std::string& json_text, const std::string& text,
+          const std::vector<std::pair<std::string, std::string>>& files, std::ostream& out) {
+  out << (opts.scene.json ? json_text : text);
+  const std::string& dir = opts.scene.out_dir;
+  if (dir.empty()) return;
+  for (const auto& [name, content] : files) WriteOutputFile(dir, name, content);
+  if (!opts.scene.json) out << "written to " << dir << "\n";
+}
+
+int RunNonlinearHb(const HbCommandOptions& opts, const Scene& scene, const SceneSystem& built,
+                   const std::vector<double>& frequencies, std::ostream& out, std::ostream& err) {
+  const HbSettings& settings = opts.settings;
+  GEARDYN_THROW_UNLESS(
+      settings.harmonics >= 0,
+      "--harmonics: must be >= 1 (or 0 for --tolerance), got " << settings.harmonics);
+  GEARDYN_THROW_UNLESS(std::isfinite(settings.tolerance) && settings.tolerance > 0.0,
+                       "--tolerance: must be > 0, got " << settings.tolerance);
+  const bool by_tolerance = settings.harmonics == 0 && opts.tolerance_option->count() > 0;
+  SystemNhbOptions options;
+  options.hb.harmonics =
+      settings.harmonics > 0 ? settings.harmonics : (by_tolerance ? 0 : kNonlinearDefaultHarmonics);
+  options.hb.harmonic_tolerance = settings.tolerance;
+  options.hb.stability = StabilityMethod(opts.stability);
+  options.start_hz = frequencies.front();
+  options.end_hz = frequencies.back();
+  const int n = static_cast<int>(frequencies.size());
+
   std::vector<std::string> warnings = built.warnings;
-  if (built.model.time_dependence() == TimeDependence::kNonlinear && !opts.settings.linear) {
+  if (options.hb.stability == NhbStabilityMethod::kHill &&
+      !MakeSystemNhbProblem(built.model).problem.IsUncondensed()) {
     warnings.push_back(
-        "the nonlinear harmonic balance is not available yet: solving the linear "
-        "model (slice meshes linearized with every slice loaded)");
+        "--stability hill: Hill's method needs the uncondensed problem, but the linear DOFs "
+        "are condensed onto the mesh coordinates; the monodromy matrix is used instead");
   }
+
+  SystemNhbCurve curve;
+  if (n == 1 || options.start_hz == options.end_hz) {
+    Summary summary;
+    curve.points.push_back(
+        SolveSystemNonlinearHb(built.model, options.start_hz, options, &summary));
+    curve.harmonics_used = static_cast<int>(curve.points.front().point.harmonics.cols()) - 1;
+    curve.period_multiple = static_cast<int>(built.model.period_meshes());
+    curve.summary = summary;
+  } else {
+    // n sets the resolution (see the file comment): ΔΩ per step ≤ (Ω_hi − Ω_lo)/n.
+    options.continuation.max_step = 1.0 / n;
+    options.continuation.initial_step =
+        std::min(options.continuation.initial_step, options.continuation.max_step);
+    options.continuation.max_points = std::max(options.continuation.max_points, 20 * n);
+    auto last_line = std::chrono::steady_clock::now() - std::chrono::hours(1);
+    int last_points = 0;
+    double last_hz = 0.0;
+    if (settings.progress) {
+      options.continuation.progress = [&](int points, double omega) {
+        last_points = points;
+        last_hz = omega / (2.0 * std::numbers::pi);
+        const auto now = std::chrono::steady_clock::now();
+        if (std::chrono::duration<double>(now - last_line).count() < kProgressInterval) return;
+        last_line = now;
+        char line[96];
+        std::snprintf(line, sizeof(line), "geardyn hb: %d points, f_m = %.1f Hz\n", points,
+                      last_hz);
+        err << line;
+      };
+    }
+    curve = TraceSystemNonlinearHb(built.model, options);
+    if (settings.progress) {
+      char line[96];
+      std::snprintf(line, sizeof(line), "geardyn hb: %d points, f_m = %.1f Hz (done)\n",
+                    last_points, last_hz);
+      err << line;
+    }
+  }
+
+  NhbRunInfo info;
+  info.start_hz = options.start_hz;
+  info.end_hz = options.end_hz;
+  info.resolution = n;
+  info.harmonics_requested = options.hb.harmonics;
+  info.tolerance = settings.tolerance;
+  info.stability = opts.stability;
+  const nlohmann::json report = MakeNhbReport(scene.source, info, curve, warnings);
+  const std::string json_text = report.dump(2) + "\n";
+  Emit(opts, json_text, FormatNhbText(report),
+       {{"nhb.json", json_text},
+        {"nhb.csv", FormatNhbCsv(curve)},
+        {"nhb_rms_dte.svg",
+         RenderNhbPlot(curve, "RMS DTE (nonlinear harmonic balance): " + scene.source)}},
+       out);
+  return curve.summary.ok() ? int{kExitOk} : int{kExitNumericalIssue};
+}
+
+int RunLinearHb(const HbCommandOptions& opts, const Scene& scene, const SceneSystem& built,
+                const std::vector<double>& frequencies, std::ostream& out, std::ostream& err) {
+  const HbOptions options = MakeHbOptions(opts.settings);
   HbProgress progress;
   if (opts.settings.progress) {
     progress = [&err](int done, int total) {
@@ -51,18 +160,36 @@ int RunHb(const HbCommandOptions& opts, std::ostream& out, std::ostream& err) {
     };
   }
   const HbSweepResult sweep = SweepHarmonicBalance(built.model, frequencies, options, progress);
-  const nlohmann::json report = MakeHbReport(scene.source, opts.settings, sweep, warnings);
+  const nlohmann::json report = MakeHbReport(scene.source, opts.settings, sweep, built.warnings);
   const std::string json_text = report.dump(2) + "\n";
-  out << (opts.scene.json ? json_text : FormatHbText(report));
-  const std::string& dir = opts.scene.out_dir;
-  if (!dir.empty()) {
-    WriteOutputFile(dir, "hb.json", json_text);
-    WriteOutputFile(dir, "hb.csv", FormatHbCsv(sweep));
-    WriteOutputFile(dir, "hb_rms_dte.svg",
-                    RenderHbPlot(sweep, "RMS DTE (linear harmonic balance): " + scene.source));
-    if (!opts.scene.json) out << "written to " << dir << "\n";
-  }
+  Emit(opts, json_text, FormatHbText(report),
+       {{"hb.json", json_text},
+        {"hb.csv", FormatHbCsv(sweep)},
+        {"hb_rms_dte.svg",
+         RenderHbPlot(sweep, "RMS DTE (linear harmonic balance): " + scene.source)}},
+       out);
   return sweep.summary.ok() ? int{kExitOk} : int{kExitNumericalIssue};
+}
+
+int RunHb(const HbCommandOptions& opts, std::ostream& out, std::ostream& err) {
+  GEARDYN_THROW_UNLESS(!(opts.nonlinear && opts.settings.linear),
+                       "--nonlinear and --linear: give at most one of them");
+  const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
+  const std::vector<double> frequencies =
+      ParseMeshFrequencies(opts.settings.mesh_frequency, NominalMeshFrequency(scene));
+  const SceneSystem built = BuildSceneSystem(scene);
+  const bool has_slices = built.model.time_dependence() == TimeDependence::kNonlinear;
+  if (opts.nonlinear) {
+    const std::string name = scene.meshes.empty() ? "NAME" : scene.meshes.front().name;
+    GEARDYN_THROW_UNLESS(has_slices,
+                         "--nonlinear: the scene has no slice mesh (contact loss needs the slice "
+                         "model); use model = \"slices\" on a mesh, e.g. --set mesh."
+                             << name << ".model=\"slices\"");
+  }
+  if (has_slices && !opts.settings.linear) {
+    return RunNonlinearHb(opts, scene, built, frequencies, out, err);
+  }
+  return RunLinearHb(opts, scene, built, frequencies, out, err);
 }
 
 }  // namespace
@@ -73,14 +200,28 @@ Command AddHbCommand(CLI::App& app) {
       "hb", "steady-state DTE, mesh and bearing forces over mesh frequency (harmonic balance)");
   AddSceneOptions(cmd, &opts->scene);
   cmd->add_option("--mesh-frequency", opts->settings.mesh_frequency,
-                  "tooth-mesh frequencies [Hz] as lo:hi:n (n points) or one value (default "
-                  "0.2 to 2.5 times the scene's, 200 points)");
+                  "tooth-mesh frequencies [Hz] as lo:hi:n or one value (default 0.2 to 2.5 "
+                  "times the scene's, n = 200). Linear: n evenly spaced points. Nonlinear: the "
+                  "continuation range; n is its resolution (each step advances at most 1/n of "
+                  "the range: at least about n points, more near resonances and folds)");
   cmd->add_option("--harmonics", opts->settings.harmonics,
-                  "number of harmonics H of the mesh frequency (default: from --tolerance)");
-  cmd->add_option("--tolerance", opts->settings.tolerance,
-                  "relative change of the RMS DTE from H/2 to H accepted (default 1e-4)");
+                  "number of harmonics H of the mesh frequency (linear default: from "
+                  "--tolerance; nonlinear default: 24)");
+  opts->tolerance_option = cmd->add_option(
+      "--tolerance", opts->settings.tolerance,
+      "linear: relative change of the RMS DTE from H/2 to H accepted (default 1e-4); "
+      "nonlinear, when given without --harmonics: H = 8, 16, ... until the RMS of the top "
+      "quarter of the harmonics relative to the RMS is below it");
   cmd->add_flag("--linear", opts->settings.linear,
-                "linear model (the only mode for now; slice meshes linearized, all loaded)");
+                "linear model even with slice meshes (linearized with every slice loaded, no "
+                "contact loss); the only mode for scenes without slice meshes");
+  cmd->add_flag("--nonlinear", opts->nonlinear,
+                "nonlinear model with contact loss and back-flank contact (the default when a "
+                "mesh has model = \"slices\"; an error without one)");
+  cmd->add_option("--stability", opts->stability,
+                  "nonlinear: stability of every point: monodromy (Floquet multipliers, "
+                  "default), hill (uncondensed problems only, else monodromy) or none")
+      ->check(CLI::IsMember({"none", "monodromy", "hill"}));
   cmd->add_flag("--progress", opts->settings.progress, "print the progress on the error stream");
   Command command{cmd, nullptr};
   command.run_with_err = [opts](std::ostream& out, std::ostream& err) {

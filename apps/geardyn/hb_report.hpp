@@ -21,7 +21,7 @@ struct HbSettings {
   std::string mesh_frequency;
   int harmonics = 0;        ///< --harmonics H (0: from --tolerance)
   double tolerance = 1e-4;  ///< --tolerance: relative change of the RMS DTE (H/2 → H)
-  bool linear = false;      ///< --linear (the only mode for now; see hb_command.cpp)
+  bool linear = false;      ///< --linear (linear model even with slice meshes)
   bool progress = false;    ///< --progress: a progress line on stderr
 };
 

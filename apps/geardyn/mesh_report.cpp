@@ -186,12 +186,21 @@ std::string RenderMeshSvg(const MeshSamples& s, const std::string& title) {
   PlotSpec spec;
   spec.title = title;
   spec.x_label = "mesh cycles θ/2π [-]";
-  spec.panels.push_back({"K [N/m]", {{"", s.cycle, s.stiffness}}});
-  spec.panels.push_back({"h [m]", {{"", s.cycle, s.load_centre}}});
-  spec.panels.push_back({"μ [-]", {{"", s.cycle, s.mu}}});
+  auto add = [&](const char* label, const std::vector<double>& y) {
+    PlotPanel panel;
+    panel.y_label = label;
+    PlotSeries series;
+    series.x = s.cycle;
+    series.y = y;
+    panel.series.push_back(std::move(series));
+    spec.panels.push_back(std::move(panel));
+  };
+  add("K [N/m]", s.stiffness);
+  add("h [m]", s.load_centre);
+  add("μ [-]", s.mu);
   if (!s.te_eta.empty()) {
-    spec.panels.push_back({"ε_η [m]", {{"", s.cycle, s.te_eta}}});
-    spec.panels.push_back({"ε_ζ [rad]", {{"", s.cycle, s.te_zeta}}});
+    add("ε_η [m]", s.te_eta);
+    add("ε_ζ [rad]", s.te_zeta);
   }
   return RenderSvg(spec);
 }

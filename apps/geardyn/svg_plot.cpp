@@ -56,6 +56,7 @@ std::string RenderSvg(const PlotSpec& spec) {
                                            << s.y.size() << " y values");
       for (double v : s.x) xr.Add(v);
     }
+    for (const PlotMarker& m : p.markers) xr.Add(m.x);
   }
   xr.Finish();
   const auto px = [&](double x) { return kLeft + (x - xr.lo) / (xr.hi - xr.lo) * plot_w; };
@@ -75,6 +76,7 @@ std::string RenderSvg(const PlotSpec& spec) {
     for (const PlotSeries& s : panel.series) {
       for (double v : s.y) yr.Add(v);
     }
+    for (const PlotMarker& m : panel.markers) yr.Add(m.y);
     yr.Finish();
     const auto py = [&](double y) {
       return bottom - (y - yr.lo) / (yr.hi - yr.lo) * spec.panel_height;
@@ -99,9 +101,10 @@ std::string RenderSvg(const PlotSpec& spec) {
     }
     svg << "<text transform=\"translate(18," << (top + bottom) / 2
         << ") rotate(-90)\" text-anchor=\"middle\">" << EscapeSvgText(panel.y_label) << "</text>\n";
+    int legend_rows = 0;  // labelled series so far (unlabelled ones take no legend row)
     for (size_t k = 0; k < panel.series.size(); ++k) {
       const PlotSeries& s = panel.series[k];
-      const char* colour = kColours[k % kColours.size()];
+      const char* colour = s.colour.empty() ? kColours[k % kColours.size()] : s.colour.c_str();
       std::ostringstream path;
       bool pen_down = false;
       for (size_t j = 0; j < s.x.size(); ++j) {
@@ -115,10 +118,22 @@ std::string RenderSvg(const PlotSpec& spec) {
       svg << "<path d=\"" << path.str() << "\" fill=\"none\" stroke=\"" << colour
           << "\" stroke-width=\"1.5\"" << (s.dashed ? " stroke-dasharray=\"6 4\"" : "") << "/>\n";
       if (!s.label.empty()) {
-        svg << "<text x=\"" << kLeft + plot_w - 8 << "\" y=\""
-            << top + 16 + 15 * static_cast<int>(k) << "\" text-anchor=\"end\" fill=\"" << colour
-            << "\">" << EscapeSvgText(s.label) << "</text>\n";
+        svg << "<text x=\"" << kLeft + plot_w - 8 << "\" y=\"" << top + 16 + 15 * legend_rows++
+            << "\" text-anchor=\"end\" fill=\"" << colour << "\">" << EscapeSvgText(s.label)
+            << "</text>\n";
       }
+    }
+    for (const PlotMarker& m : panel.markers) {
+      if (!std::isfinite(m.x) || !std::isfinite(m.y)) continue;
+      svg << "<circle cx=\"" << px(m.x) << "\" cy=\"" << py(m.y)
+          << "\" r=\"4\" fill=\"none\" stroke=\"" << m.colour << "\" stroke-width=\"1.5\"/>";
+      if (!m.label.empty()) {
+        const bool right_half = px(m.x) > kLeft + 0.5 * plot_w;  // keep the label in the frame
+        svg << "<text x=\"" << px(m.x) + (right_half ? -6 : 6) << "\" y=\"" << py(m.y) - 6
+            << "\" text-anchor=\"" << (right_half ? "end" : "start") << "\" fill=\"" << m.colour
+            << "\">" << EscapeSvgText(m.label) << "</text>";
+      }
+      svg << "\n";
     }
   }
   svg << "<text x=\"" << kLeft + plot_w / 2 << "\" y=\"" << height - 12

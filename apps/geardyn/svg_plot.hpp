@@ -14,12 +14,22 @@ struct PlotSeries {
   std::vector<double> x;  ///< abscissae (same length as y)
   std::vector<double> y;  ///< ordinates
   bool dashed = false;    ///< dashed line (e.g. an unstable branch)
+  std::string colour;     ///< SVG stroke colour (empty: the palette colour of its index)
+};
+
+/// A labelled point mark (e.g. a jump of a frequency-response curve): a circle and its label.
+struct PlotMarker {
+  double x = 0.0;
+  double y = 0.0;
+  std::string label;               ///< text next to the circle (empty: none)
+  std::string colour = "#000000";  ///< SVG colour of the circle and the label
 };
 
 /// One panel: a y axis and its curves.
 struct PlotPanel {
   std::string y_label;  ///< axis label with unit, e.g. "K [N/m]"
   std::vector<PlotSeries> series;
+  std::vector<PlotMarker> markers;  ///< drawn over the series (non-finite ones skipped)
 };
 
 /// A figure of panels stacked vertically over a common x axis.

@@ -8,11 +8,8 @@
 #include "geardyn/common/check.hpp"
 
 namespace geardyn::internal {
-namespace {
-
-// Smallest d dividing the number of steps with step[i] == step[i + d] for all i.
-int RepeatingPeriod(const std::vector<double>& dt, const std::vector<const MatrixX*>& A,
-                    double period_s) {
+int RepeatingStepPeriod(const std::vector<double>& dt, const std::vector<const MatrixX*>& A,
+                        double period_s) {
   const int K = static_cast<int>(dt.size());
   for (int d = 1; d < K; ++d) {
     if (K % d != 0) continue;
@@ -26,23 +23,27 @@ int RepeatingPeriod(const std::vector<double>& dt, const std::vector<const Matri
   return K;
 }
 
-}  // namespace
+MergedSteps MergeEqualSteps(const StateSystem& sys) {
+  MergedSteps m;
+  for (std::size_t k = 0; k < sys.step_matrices.size(); ++k) {
+    if (!m.A.empty() && *m.A.back() == sys.step_matrices[k]) {
+      m.dt.back() += sys.step_durations[k];
+    } else {
+      m.dt.push_back(sys.step_durations[k]);
+      m.A.push_back(&sys.step_matrices[k]);
+      m.index.push_back(static_cast<int>(k));
+    }
+  }
+  return m;
+}
 
 MonodromyOutcome ExactStepsMonodromy(const StateSystem& sys) {
   GEARDYN_THROW_UNLESS(!sys.step_matrices.empty(),
                        "method: exact_steps needs piecewise-constant coefficients (steps)");
-  // Merge consecutive equal steps.
-  std::vector<double> dt;
-  std::vector<const MatrixX*> A;
-  for (std::size_t k = 0; k < sys.step_matrices.size(); ++k) {
-    if (!A.empty() && *A.back() == sys.step_matrices[k]) {
-      dt.back() += sys.step_durations[k];
-    } else {
-      dt.push_back(sys.step_durations[k]);
-      A.push_back(&sys.step_matrices[k]);
-    }
-  }
-  const int d = RepeatingPeriod(dt, A, sys.period_s);
+  const MergedSteps merged = MergeEqualSteps(sys);
+  const std::vector<double>& dt = merged.dt;
+  const std::vector<const MatrixX*>& A = merged.A;
+  const int d = RepeatingStepPeriod(dt, A, sys.period_s);
   const std::int64_t power = static_cast<std::int64_t>(dt.size()) / d;
   MonodromyOutcome out;
   ScaledMatrix cycle{MatrixX::Identity(sys.dim, sys.dim), 0.0};

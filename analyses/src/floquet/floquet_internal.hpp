@@ -44,6 +44,10 @@ struct StateSystem {
 
   std::vector<double> step_durations;  ///< piecewise form: Δt_k [s]
   std::vector<MatrixX> step_matrices;  ///< A_k (dim × dim)
+  /// Sparse copies of step_matrices (same order) when the change of variables is diagonal (M
+  /// diagonal, no rigid mode) and the A_k have ≤ 25 % nonzeros; else empty (kArpackMonodromy's
+  /// matrix-free expm action).
+  std::vector<SparseMatrix> sparse_step_matrices;
   /// A(t) into *A (dim × dim, sized by the caller); empty when the system has no callback/steps.
   std::function<void(double t, MatrixX* A)> evaluate;
   /// Hill: A_m, m = 0 … N (dim × dim), A(t) = Σ A_m e^{imΩt}.
@@ -70,11 +74,28 @@ struct MonodromyOutcome {
   std::string message;
 };
 
+/// @brief The steps of `sys` with consecutive equal step matrices merged: durations dt, the
+/// matrices A (pointers into sys.step_matrices) and the index of each merged step's first step.
+struct MergedSteps {
+  std::vector<double> dt;
+  std::vector<const MatrixX*> A;
+  std::vector<int> index;
+};
+MergedSteps MergeEqualSteps(const StateSystem& sys);
+
 /// @brief kExactSteps: Π expm(A_k Δt_k), consecutive equal steps merged, a repeating pattern
 /// raised to its power by squaring.
 MonodromyOutcome ExactStepsMonodromy(const StateSystem& sys);
 /// @brief kMagnus: Gauss–Legendre Magnus of `order` (4, 6) on `steps` equal steps.
 MonodromyOutcome MagnusMonodromyFixed(const StateSystem& sys, int order, int steps);
+/// @brief One Magnus step exponential expm(Ω) over [t0, t0 + h] (order 4 or 6); adds the A(t)
+/// evaluations to *evaluations.
+MatrixX MagnusStepPropagator(const StateSystem& sys, int order, double t0, double h,
+                             long* evaluations);
+/// @brief Smallest d dividing the number of steps with step[i] == step[i + d] for all i (the
+/// repeating pattern of a hunting period made of identical mesh cycles).
+int RepeatingStepPeriod(const std::vector<double>& dt, const std::vector<const MatrixX*>& A,
+                        double period_s);
 /// @brief kMagnus with the step count chosen from `tolerance` (Richardson on the multipliers).
 MonodromyOutcome MagnusMonodromy(const StateSystem& sys, int order, double tolerance);
 /// @brief kOdeStepper: GSL rk8pd on the fundamental matrix, two tolerances.
@@ -118,6 +139,10 @@ void FinishResult(int num_rigid, double tolerance, FloquetResult* result);
 FloquetResult ComputeFloquetState(const StateSystem& sys, const FloquetOptions& options,
                                   FloquetMethod method);
 
+/// @brief kArpackMonodromy on a StateSystem (floquet.hpp): the arpack_nev largest-|λ|
+/// multipliers of the matrix-free monodromy operator.
+FloquetResult ArpackMonodromyFloquet(const StateSystem& sys, const FloquetOptions& options);
+
 /// @brief kAuto on a generic system (see floquet_system.hpp).
 FloquetMethod SelectGenericMethod(const PeriodicSecondOrderSystem& system,
                                   const FloquetOptions& options);
@@ -125,8 +150,8 @@ FloquetMethod SelectGenericMethod(const PeriodicSecondOrderSystem& system,
 /// @brief Projects a generic system on the M-orthonormal basis V (n × m): M_r = VᵀMV, K_r, C_r.
 PeriodicSecondOrderSystem ProjectSystem(const PeriodicSecondOrderSystem& system, const MatrixX& V);
 
-/// @brief kModalProjection on a generic system; `modes(m)` returns the lowest m M-orthonormal
-/// modes (n × m') of the mean system. Runs m and ⌈1.5m⌉ modes (see floquet.hpp).
+/// @brief kModalProjection; `modes(m)` returns the lowest m M-orthonormal modes (n × m') of the
+/// mean system. Runs m, ⌈1.5m⌉ and ⌈2.25m⌉ modes (see modal_projection.cpp for the estimate).
 FloquetResult ModalProjectionFloquet(
     const std::function<MatrixX(int)>& modes, int num_dofs,
     const std::function<PeriodicSecondOrderSystem(const MatrixX&)>& project,

@@ -20,6 +20,8 @@ const char* ToString(FloquetMethod method) {
       return "hill";
     case FloquetMethod::kModalProjection:
       return "modal_projection";
+    case FloquetMethod::kArpackMonodromy:
+      return "arpack_monodromy";
   }
   return "unknown";
 }
@@ -38,6 +40,13 @@ bool FloquetOptions::IsValid(std::string* why) const {
     os << "magnus_order: must be 4 or 6, got " << magnus_order;
   } else if (magnus_steps < 0) {
     os << "magnus_steps: must be >= 0, got " << magnus_steps;
+  } else if (arpack_nev < 1) {
+    os << "arpack_nev: must be >= 1, got " << arpack_nev;
+  } else if (arpack_ncv != 0 && arpack_ncv < arpack_nev + 2) {
+    os << "arpack_ncv: must be 0 (automatic) or >= arpack_nev + 2 = " << arpack_nev + 2 << ", got "
+       << arpack_ncv;
+  } else if (arpack_max_iterations < 1) {
+    os << "arpack_max_iterations: must be >= 1, got " << arpack_max_iterations;
   } else if (modal_projection_min_dofs < 1) {
     os << "modal_projection_min_dofs: must be >= 1, got " << modal_projection_min_dofs;
   } else {

@@ -27,6 +27,32 @@ inline MatrixX Commutator(const MatrixX& X, const MatrixX& Y) {
 
 }  // namespace
 
+MatrixX MagnusStepPropagator(const StateSystem& sys, int order, double t0, double h,
+                             long* evaluations) {
+  const int N = sys.dim;
+  MatrixX A1(N, N), A2(N, N), A3(N, N), Omega(N, N);
+  if (order == 4) {
+    const double c = std::sqrt(3.0) / 6.0;
+    sys.evaluate(t0 + (0.5 - c) * h, &A1);
+    sys.evaluate(t0 + (0.5 + c) * h, &A2);
+    Omega = 0.5 * h * (A1 + A2) + (std::sqrt(3.0) / 12.0) * h * h * Commutator(A2, A1);
+    *evaluations += 2;
+  } else {
+    const double c = std::sqrt(15.0) / 10.0;
+    sys.evaluate(t0 + (0.5 - c) * h, &A1);
+    sys.evaluate(t0 + 0.5 * h, &A2);
+    sys.evaluate(t0 + (0.5 + c) * h, &A3);
+    const MatrixX a1 = h * A2;
+    const MatrixX a2 = (std::sqrt(15.0) / 3.0) * h * (A3 - A1);
+    const MatrixX a3 = (10.0 / 3.0) * h * (A3 - 2.0 * A2 + A1);
+    const MatrixX C1 = Commutator(a1, a2);
+    const MatrixX C2 = (-1.0 / 60.0) * Commutator(a1, 2.0 * a3 + C1);
+    Omega = a1 + a3 / 12.0 + (1.0 / 240.0) * Commutator(-20.0 * a1 - a3 + C1, a2 + C2);
+    *evaluations += 3;
+  }
+  return Omega.exp();
+}
+
 MonodromyOutcome MagnusMonodromyFixed(const StateSystem& sys, int order, int steps) {
   GEARDYN_THROW_UNLESS(static_cast<bool>(sys.evaluate),
                        "method: magnus needs the coefficients callback (or steps)");
@@ -35,29 +61,8 @@ MonodromyOutcome MagnusMonodromyFixed(const StateSystem& sys, int order, int ste
   const double h = sys.period_s / steps;
   MonodromyOutcome out;
   out.phi = ScaledMatrix{MatrixX::Identity(N, N), 0.0};
-  MatrixX A1(N, N), A2(N, N), A3(N, N), Omega(N, N);
   for (int j = 0; j < steps; ++j) {
-    const double t0 = j * h;
-    if (order == 4) {
-      const double c = std::sqrt(3.0) / 6.0;
-      sys.evaluate(t0 + (0.5 - c) * h, &A1);
-      sys.evaluate(t0 + (0.5 + c) * h, &A2);
-      Omega = 0.5 * h * (A1 + A2) + (std::sqrt(3.0) / 12.0) * h * h * Commutator(A2, A1);
-      out.evaluations += 2;
-    } else {
-      const double c = std::sqrt(15.0) / 10.0;
-      sys.evaluate(t0 + (0.5 - c) * h, &A1);
-      sys.evaluate(t0 + 0.5 * h, &A2);
-      sys.evaluate(t0 + (0.5 + c) * h, &A3);
-      const MatrixX a1 = h * A2;
-      const MatrixX a2 = (std::sqrt(15.0) / 3.0) * h * (A3 - A1);
-      const MatrixX a3 = (10.0 / 3.0) * h * (A3 - 2.0 * A2 + A1);
-      const MatrixX C1 = Commutator(a1, a2);
-      const MatrixX C2 = (-1.0 / 60.0) * Commutator(a1, 2.0 * a3 + C1);
-      Omega = a1 + a3 / 12.0 + (1.0 / 240.0) * Commutator(-20.0 * a1 - a3 + C1, a2 + C2);
-      out.evaluations += 3;
-    }
-    const MatrixX E = Omega.exp();
+    const MatrixX E = MagnusStepPropagator(sys, order, j * h, h, &out.evaluations);
     out.phi.matrix = E * out.phi.matrix;
     out.phi.Normalize();
   }

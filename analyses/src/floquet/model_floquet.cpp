@@ -160,6 +160,10 @@ FloquetResult ComputeFloquet(const SystemModel& model, const FloquetOptions& opt
     }
   }
   CheckSingleMeshFrequency(model, "ComputeFloquet");
+  GEARDYN_THROW_UNLESS(
+      options.method != FloquetMethod::kArpackMonodromy ||
+          options.arpack_nev <= 2 * model.num_dofs(),
+      "arpack_nev: must be <= 2n = " << 2 * model.num_dofs() << ", got " << options.arpack_nev);
   FloquetResult result;
   const int num_blocks = options.split_blocks ? model.num_blocks() : 1;
   if (num_blocks <= 1) {

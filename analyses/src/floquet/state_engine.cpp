@@ -1,8 +1,10 @@
 // ComputeFloquetState: the single dispatch on a StateSystem (architecture §3.4) and the
 // generic entry ComputeFloquet(PeriodicSecondOrderSystem, options).
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "floquet/floquet_internal.hpp"
 #include "geardyn/common/check.hpp"
@@ -11,6 +13,7 @@ namespace geardyn::internal {
 
 FloquetResult ComputeFloquetState(const StateSystem& sys, const FloquetOptions& options,
                                   FloquetMethod method) {
+  if (method == FloquetMethod::kArpackMonodromy) return ArpackMonodromyFloquet(sys, options);
   FloquetResult result;
   result.method_used = method;
   result.period_s = sys.period_s;
@@ -55,6 +58,7 @@ FloquetResult ComputeFloquetState(const StateSystem& sys, const FloquetOptions& 
       case FloquetMethod::kAuto:
       case FloquetMethod::kHill:
       case FloquetMethod::kModalProjection:
+      case FloquetMethod::kArpackMonodromy:
         GEARDYN_DEMAND(false);
     }
     const Spectrum spectrum =
@@ -113,6 +117,9 @@ FloquetResult ComputeFloquet(const PeriodicSecondOrderSystem& system,
   GEARDYN_THROW_UNLESS(std::isfinite(system.period_s) && system.period_s > 0.0,
                        "period_s: must be finite and > 0, got " << system.period_s);
   const FloquetMethod method = internal::SelectGenericMethod(system, checked);
+  GEARDYN_THROW_UNLESS(
+      method != FloquetMethod::kArpackMonodromy || checked.arpack_nev <= 2 * system.num_dofs(),
+      "arpack_nev: must be <= 2n = " << 2 * system.num_dofs() << ", got " << checked.arpack_nev);
   FloquetResult result;
   if (method == FloquetMethod::kModalProjection) {
     GEARDYN_THROW_UNLESS(system.mass.rows() >= 1 && system.mass.rows() == system.mass.cols(),

@@ -198,6 +198,23 @@ StateSystem MakeStateSystem(const PeriodicSecondOrderSystem& system, bool deflat
     out.step_durations.push_back(step.duration_s);
     out.step_matrices.push_back(std::move(A));
   }
+  // Sparse copies for the matrix-free expm action (kArpackMonodromy): only when B = L⁻ᵀ is
+  // diagonal (M diagonal, no rigid mode), so that A_k keeps the sparsity of K_k and C_k.
+  const bool diagonal_mass =
+      r == 0 && MatrixX(system.mass.triangularView<Eigen::StrictlyLower>()).isZero(0.0) &&
+      MatrixX(system.mass.triangularView<Eigen::StrictlyUpper>()).isZero(0.0);
+  if (diagonal_mass && !out.step_matrices.empty()) {
+    constexpr double kMaxDensity = 0.25;
+    for (const MatrixX& A : out.step_matrices) {
+      SparseMatrix S = A.sparseView(0.0, 0.0);
+      if (static_cast<double>(S.nonZeros()) > kMaxDensity * static_cast<double>(A.size())) {
+        out.sparse_step_matrices.clear();
+        break;
+      }
+      S.makeCompressed();
+      out.sparse_step_matrices.push_back(std::move(S));
+    }
+  }
   if (system.coefficients) {
     auto buffers = std::make_shared<std::pair<MatrixX, MatrixX>>();
     out.evaluate = [buffers, make_state, coefficients = system.coefficients](double t, MatrixX* A) {

@@ -7,6 +7,7 @@
 
 #include "geardyn/common/check.hpp"
 #include "geardyn/common/overloaded.hpp"
+#include "geardyn/numerics/rigid_modes.hpp"
 #include "geardyn/system/system_steps.hpp"
 #include "hb_internal.hpp"
 
@@ -62,27 +63,11 @@ MatrixXc FromRealLayout(const VectorX& x, int b, int harmonics) {
 }
 
 RigidModes ComputeRigidModes(const MatrixX& mean_stiffness, double null_tol) {
-  const Eigen::Index n = mean_stiffness.rows();
-  // D = diag(K̄) (1 where zero, e.g. an unsupported rotation) so that m and rad mix.
-  VectorX d = mean_stiffness.diagonal().cwiseAbs();
-  const double dmax = n > 0 ? d.maxCoeff() : 0.0;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (!(d(i) > 1e-14 * dmax)) d(i) = dmax > 0.0 ? dmax : 1.0;
-  }
-  const VectorX sqrt_d = d.cwiseSqrt();
-  const VectorX inv_sqrt_d = sqrt_d.cwiseInverse();
-  const MatrixX scaled = inv_sqrt_d.asDiagonal() * mean_stiffness * inv_sqrt_d.asDiagonal();
-  Eigen::SelfAdjointEigenSolver<MatrixX> eig(0.5 * (scaled + scaled.transpose()));
+  const RigidBodyModes modes = ComputeRigidBodyModes(mean_stiffness, null_tol);
   RigidModes out;
-  if (eig.info() != Eigen::Success || n == 0) return out;
-  const VectorX& lambda = eig.eigenvalues();  // ascending
-  const double lmax = std::max(std::abs(lambda(n - 1)), 1e-300);
-  int r = 0;
-  while (r < n && std::abs(lambda(r)) < null_tol * lmax) ++r;
-  const MatrixX V = eig.eigenvectors().leftCols(r);
-  out.U = sqrt_d.asDiagonal() * V;
-  out.Vs = inv_sqrt_d.asDiagonal() * V;
-  out.inv_sqrt_d = inv_sqrt_d;
+  out.U = modes.loads;
+  out.Vs = modes.modes;
+  out.inv_sqrt_d = modes.inv_sqrt_d;
   return out;
 }
 

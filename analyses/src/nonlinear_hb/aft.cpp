@@ -20,8 +20,7 @@ NhbSolver::Impl::Impl(NhbProblem problem_in, const NhbOptions& options_in, int h
   dofs = static_cast<int>(problem.mass.rows());
   H = harmonics;
   p = options.period_multiple;
-  S = std::max(64, options.samples_per_harmonic * H);
-  S += S % 2;
+  S = NhbSolver::SamplesFor(options, H);
   m = n * (2 * H + 1);
 
   time_buf = fftw_alloc_real(static_cast<size_t>(S));
@@ -41,6 +40,13 @@ NhbSolver::Impl::Impl(NhbProblem problem_in, const NhbOptions& options_in, int h
   dZ = Z;
   F.assign(H + 1, VectorXc::Zero(n));
   dF = F;
+  sw.resize(n, S);
+  {
+    // Probe whether the law locates its contact switches (optional virtual).
+    MatrixX probe_u = MatrixX::Zero(n, 1), probe_v(n, 1);
+    const VectorX probe_phase = VectorX::Zero(1);
+    has_switch_function = problem.law->SwitchFunction(probe_u, probe_phase, probe_v);
+  }
   J.resize(m, m);
   R.resize(m);
   dx.resize(m);
@@ -91,6 +97,11 @@ void NhbSolver::Impl::AnalyseJacobian() {
     fftw_execute(r2c);
     for (int j = 0; j <= 2 * H; ++j) dg_h[j](a, b) = {freq_buf[j][0] * inv, freq_buf[j][1] * inv};
   }
+}
+
+int NhbSolver::SamplesFor(const NhbOptions& options, int harmonics) {
+  const int S = std::max(64, options.samples_per_harmonic * harmonics);
+  return S + S % 2;
 }
 
 }  // namespace geardyn

@@ -62,6 +62,18 @@ void NhbClearanceLaw::Evaluate(const MatrixX& u, const VectorX& phase, MatrixX& 
   }
 }
 
+bool NhbClearanceLaw::SwitchFunction(const MatrixX& u, const VectorX& phase, MatrixX& value) const {
+  (void)phase;
+  const Eigen::Index n = stiffness_.size();
+  for (Eigen::Index s = 0; s < u.cols(); ++s) {
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double front = u(i, s) - front_gap_[i];
+      value(i, s) = std::isfinite(back_gap_[i]) ? front * (u(i, s) + back_gap_[i]) : front;
+    }
+  }
+  return true;
+}
+
 void NhbClearanceLaw::ContactBranch(MatrixX& stiffness, VectorX& offset) const {
   stiffness = stiffness_.asDiagonal();
   offset = -stiffness_.cwiseProduct(front_gap_);

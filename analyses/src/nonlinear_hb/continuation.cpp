@@ -76,9 +76,10 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
     point.tangent_omega = t[m];
     if (options.stability != NhbStabilityMethod::kNone) {
       point.max_multiplier = solver.MaxMultiplier(xx, om);
-      point.stable = point.max_multiplier < 1.0;
+      point.stable = point.max_multiplier < 1.0 + options.stability_margin;
     }
     curve.points.push_back(std::move(point));
+    if (c.progress) c.progress(static_cast<int>(curve.points.size()), om);
   };
   record(x, omega, static_cast<int>(newton), rn);
   std::vector<double> steps{0.0};

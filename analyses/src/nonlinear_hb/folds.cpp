@@ -82,9 +82,13 @@ void FindFoldsAndJumps(NhbCurve& curve, const std::vector<double>& steps, double
     jump.max_after = nan;
     double best = std::numeric_limits<double>::infinity();
     for (size_t i = 0; i + 1 < pts.size(); ++i) {
-      if (static_cast<int>(i) >= fold.index - 1 && static_cast<int>(i) <= fold.index + 1) continue;
       const NhbPoint& p = pts[i];
       const NhbPoint& q = pts[i + 1];
+      // The landing branch is neither of the two branches that meet at the fold.
+      if (p.branch != q.branch || p.branch == pts[fold.index].branch ||
+          p.branch == pts[std::min<size_t>(fold.index + 1, pts.size() - 1)].branch) {
+        continue;
+      }
       if (!p.stable || !q.stable) continue;
       if ((p.omega - fold.omega) * (q.omega - fold.omega) > 0 || p.omega == q.omega) continue;
       const double w = (fold.omega - p.omega) / (q.omega - p.omega);

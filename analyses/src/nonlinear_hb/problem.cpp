@@ -57,8 +57,12 @@ bool NhbOptions::IsValid(std::string* why) const {
       << samples_per_harmonic;
   else if (!(newton_tolerance > 0))
     s << "newton_tolerance: must be > 0, got " << newton_tolerance;
+  else if (!(stability_margin >= 0) || !std::isfinite(stability_margin))
+    s << "stability_margin: must be finite and ≥ 0, got " << stability_margin;
   else if (max_newton_iterations < 1)
     s << "max_newton_iterations: must be ≥ 1, got " << max_newton_iterations;
+  else if (monodromy_steps < 0)
+    s << "monodromy_steps: must be ≥ 0 (0 = automatic), got " << monodromy_steps;
   else
     return true;
   return Fail(why, s.str());

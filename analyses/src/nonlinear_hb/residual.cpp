@@ -10,75 +10,66 @@
 #include "nonlinear_hb/solver_impl.hpp"
 
 namespace geardyn {
-namespace {
-
-/// G_j for any integer j (G_{−j} = conj(G_j)).
-MatrixXc Block(const std::vector<MatrixXc>& g, int j) {
-  return j >= 0 ? g[j] : MatrixXc(g[-j].conjugate());
-}
-
-}  // namespace
-
 void NhbSolver::Impl::Evaluate(const VectorX& x, double omega, VectorX* residual, MatrixX* jacobian,
                                VectorX* d_omega) {
+  using C = std::complex<double>;
   UpdateLinear(omega);
   Synthesize(x);
   problem.law->Evaluate(u, phase, g, dg);
   AnalyseForce();
-  // Complex harmonics U_k of x.
-  auto U = [&](int k, int i) {
-    return k == 0 ? std::complex<double>(x[i], 0.0)
-                  : std::complex<double>(x[Re(k, i)], x[Im(k, i)]);
+  if (options.switch_correction) CorrectForceAtSwitches(x);
+  // Complex harmonic U_k of coordinate i from x.
+  auto U = [&](int k, int i) { return k == 0 ? C(x[i], 0.0) : C(x[Re(k, i)], x[Im(k, i)]); };
+  auto store = [&](VectorX& out, int k, int a, C r) {
+    out[Re(k, a)] = r.real();
+    if (k > 0) out[Im(k, a)] = r.imag();
   };
-  VectorXc Uk(n);
   if (residual) {
     for (int k = 0; k <= H; ++k) {
-      for (int i = 0; i < n; ++i) Uk[i] = U(k, i);
-      const VectorXc r = Z[k] * Uk + g_h.col(k) - F[k];
-      for (int i = 0; i < n; ++i) {
-        (*residual)[Re(k, i)] = r[i].real();
-        if (k > 0) (*residual)[Im(k, i)] = r[i].imag();
+      for (int a = 0; a < n; ++a) {
+        C r = g_h(a, k) - F[k][a];
+        for (int b = 0; b < n; ++b) r += Z[k](a, b) * U(k, b);
+        store(*residual, k, a, r);
       }
     }
   }
   if (d_omega) {
     for (int k = 0; k <= H; ++k) {
-      for (int i = 0; i < n; ++i) Uk[i] = U(k, i);
-      const VectorXc r = dZ[k] * Uk - dF[k];
-      for (int i = 0; i < n; ++i) {
-        (*d_omega)[Re(k, i)] = r[i].real();
-        if (k > 0) (*d_omega)[Im(k, i)] = r[i].imag();
+      for (int a = 0; a < n; ++a) {
+        C r = -dF[k][a];
+        for (int b = 0; b < n; ++b) r += dZ[k](a, b) * U(k, b);
+        store(*d_omega, k, a, r);
       }
     }
   }
   if (!jacobian) return;
   AnalyseJacobian();
   MatrixX& Jm = *jacobian;
-  Jm.setZero();
-  const std::complex<double> I(0.0, 1.0);
+  const C I(0.0, 1.0);
+  // G_j(a, b) for any integer j (G_{−j} = conj(G_j)); no temporaries in the O(H²n²) loop.
+  auto G = [&](int j, int a, int b) { return j >= 0 ? dg_h[j](a, b) : std::conj(dg_h[-j](a, b)); };
   for (int k = 0; k <= H; ++k) {
     for (int mm = 0; mm <= H; ++mm) {
-      // ∂N_k/∂(Re U_m) and ∂N_k/∂(Im U_m), from δU_{±m}: U_m = a + ib, U_{−m} = a − ib.
-      MatrixXc dA, dB;
-      if (mm == 0) {
-        dA = Block(dg_h, k);
-      } else {
-        const MatrixXc minus = Block(dg_h, k - mm);
-        const MatrixXc plus = Block(dg_h, k + mm);
-        dA = minus + plus;
-        dB = I * (minus - plus);
-      }
-      if (k == mm) {
-        dA += Z[k];
-        if (k > 0) dB += I * Z[k];
-      }
       for (int a = 0; a < n; ++a) {
         for (int b = 0; b < n; ++b) {
-          Jm(Re(k, a), Re(mm, b)) = dA(a, b).real();
-          if (k > 0) Jm(Im(k, a), Re(mm, b)) = dA(a, b).imag();
+          // ∂N_k/∂(Re U_m) and ∂N_k/∂(Im U_m), from δU_{±m}: U_m = α + iβ, U_{−m} = α − iβ.
+          C dA, dB;
+          if (mm == 0) {
+            dA = G(k, a, b);
+          } else {
+            const C minus = G(k - mm, a, b), plus = G(k + mm, a, b);
+            dA = minus + plus;
+            dB = I * (minus - plus);
+          }
+          if (k == mm) {
+            dA += Z[k](a, b);
+            if (k > 0) dB += I * Z[k](a, b);
+          }
+          Jm(Re(k, a), Re(mm, b)) = dA.real();
+          if (k > 0) Jm(Im(k, a), Re(mm, b)) = dA.imag();
           if (mm > 0) {
-            Jm(Re(k, a), Im(mm, b)) = dB(a, b).real();
-            if (k > 0) Jm(Im(k, a), Im(mm, b)) = dB(a, b).imag();
+            Jm(Re(k, a), Im(mm, b)) = dB.real();
+            if (k > 0) Jm(Im(k, a), Im(mm, b)) = dB.imag();
           }
         }
       }

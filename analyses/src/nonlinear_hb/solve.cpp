@@ -33,7 +33,7 @@ NhbSolveResult SolveNonlinearHarmonicBalance(const NhbProblem& problem, double o
     solver.Describe(*x, omega, point);
     if (options.stability != NhbStabilityMethod::kNone && status == Status::kSuccess) {
       point.max_multiplier = solver.MaxMultiplier(*x, omega);
-      point.stable = point.max_multiplier < 1.0;
+      point.stable = point.max_multiplier < 1.0 + options.stability_margin;
     }
   };
   VectorX x;

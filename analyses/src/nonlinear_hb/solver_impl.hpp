@@ -52,6 +52,12 @@ struct NhbSolver::Impl {
   VectorX R, dx, x_trial, R_trial;
   Eigen::PartialPivLU<MatrixX> lu;
 
+  // Contact switches (switches.cpp).
+  bool has_switch_function = false;  ///< The law provides SwitchFunction.
+  MatrixX sw;                        ///< n×S switching function at the samples.
+  MatrixX u1, du1, sw1;              ///< One-column scratch for the root finder.
+  VectorX theta1, phase1;
+
   /// Index of Re U_k (k ≥ 1) of coordinate i in x; U_0 at i; Im U_k right after Re U_k block.
   int Re(int k, int i) const { return k == 0 ? i : n * (2 * k - 1) + i; }
   int Im(int k, int i) const { return n * 2 * k + i; }
@@ -63,6 +69,15 @@ struct NhbSolver::Impl {
   /// Residual (and Jacobian, Ω-derivative when non-null) from the current x.
   void Evaluate(const VectorX& x, double omega, VectorX* residual, MatrixX* jacobian,
                 VectorX* d_omega);
+  /// u(θ) and du/dθ (n×T each, du may be null) at base angles θ = ωt [rad] from x.
+  void SynthesizeAt(const VectorX& x, const VectorX& theta, MatrixX& uu, MatrixX* du) const;
+  /// Switching function of coordinate i at base angle θ (law->SwitchFunction on one column).
+  double SwitchValueAt(const VectorX& x, int i, double theta);
+  /// Root of the switching function of coordinate i in [a, b] (values fa, fb of opposite
+  /// sign, "positive" = fa > 0) by the Illinois method to ~1e-14 relative in θ.
+  double LocateSwitch(const VectorX& x, int i, double a, double fa, double b, double fb);
+  /// Adds the Euler–Maclaurin kink terms to g_h (nonlinear_hb.hpp "AFT"); needs u, dg, g_h.
+  void CorrectForceAtSwitches(const VectorX& x);
   double MonodromyMaxMultiplier(const VectorX& x, double omega);
   double HillMaxMultiplier(const VectorX& x, double omega);
 };

@@ -1,11 +1,11 @@
 #include "geardyn/system/static_deflection.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <chrono>
 #include <cmath>
 #include <sstream>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/numerics/rigid_modes.hpp"
 #include "geardyn/system/workspace.hpp"
 
 namespace geardyn {
@@ -36,38 +36,25 @@ StaticDeflectionResult SolveStaticDeflection(const SystemModel& model,
   const MatrixX kbar = AssembleMeanStiffness(model, ws);
   result.load = AssembleMeanLoad(model, ws, options.samples_per_period);
 
-  // K̄ = V Λ Vᵀ; null space = eigenvalues ≤ tol·max. Scale DOFs by √diag(K̄) first so that mixed
-  // units (m, rad) do not decide what is "small".
-  VectorX scale = kbar.diagonal().cwiseAbs().cwiseSqrt();
-  for (int i = 0; i < n; ++i) {
-    if (!(scale(i) > 0.0)) scale(i) = 1.0;
-  }
-  const VectorX inv_scale = scale.cwiseInverse();
-  const MatrixX ks = inv_scale.asDiagonal() * kbar * inv_scale.asDiagonal();
-  Eigen::SelfAdjointEigenSolver<MatrixX> eig(0.5 * (ks + ks.transpose()));
-  if (eig.info() != Eigen::Success) {
+  // K̄ = V Λ Vᵀ in the √diag(K̄)-scaled coordinates (rigid_modes.hpp); the deflection is the
+  // solution orthogonal to the rigid modes there, the load's part along them is dropped.
+  const RigidBodyModes rigid = ComputeRigidBodyModes(kbar, options.null_tol);
+  if (!rigid.ok) {
     result.summary.status = Status::kNumericalIssue;
     result.summary.message = "eigen-decomposition of the mean stiffness failed";
     return result;
   }
-  const VectorX& lambda = eig.eigenvalues();
-  const double largest = n > 0 ? lambda.cwiseAbs().maxCoeff() : 0.0;
-  const VectorX fs = inv_scale.asDiagonal() * result.load;  // load in scaled coordinates
+  const int r0 = rigid.count();
+  const VectorX fs = rigid.inv_sqrt_d.asDiagonal() * result.load;  // load in scaled coordinates
   VectorX ys = VectorX::Zero(n);
-  double unbalanced2 = 0.0;
-  for (int r = 0; r < n; ++r) {
-    const double proj = eig.eigenvectors().col(r).dot(fs);
-    if (lambda(r) <= options.null_tol * largest) {
-      ++result.num_rigid_modes;
-      unbalanced2 += proj * proj;
-    } else {
-      ys += (proj / lambda(r)) * eig.eigenvectors().col(r);
-    }
+  for (int r = r0; r < n; ++r) {
+    const double proj = rigid.eigenvectors.col(r).dot(fs);
+    ys += (proj / rigid.eigenvalues(r)) * rigid.eigenvectors.col(r);
   }
-  result.deflection = inv_scale.asDiagonal() * ys;
-  const double unbalanced = std::sqrt(unbalanced2);
-  // Unbalanced load in the original units: report the scaled measure relative to ‖f_s‖.
+  result.num_rigid_modes = r0;
+  result.deflection = rigid.inv_sqrt_d.asDiagonal() * ys;
   const double fnorm = fs.norm();
+  const double unbalanced = rigid.UnbalancedFraction(result.load) * fnorm;
   result.unbalanced_load = unbalanced;
   if (result.num_rigid_modes > 0) {
     std::ostringstream os;

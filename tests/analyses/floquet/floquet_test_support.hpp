@@ -75,8 +75,9 @@ inline LinearMeshCore HandSmoothCore(double a = 0.2, double c = 0.05, double c_m
 
 /// Two steel shafts (along Z, 0.3 m, Ø 40 mm, `elements` Timoshenko elements each, bearings at both
 /// ends with no torsional stiffness) carrying the hand pair's pinion and wheel at their middle
-/// nodes, meshing through `core`: 12·(elements + 1) DOFs, one free rotation.
-inline SystemModel GearedShafts(int elements, const MeshCore& core) {
+/// nodes, meshing through `core`: 12·(elements + 1) DOFs, one free rotation. `shaft_beta` [s]:
+/// stiffness-proportional damping C_e = β K_e of every shaft element (0: undamped shafts).
+inline SystemModel GearedShafts(int elements, const MeshCore& core, double shaft_beta = 0.0) {
   const HandPairParams p;
   SystemBuilder b;
   const double length = 0.3, h = length / elements;
@@ -102,7 +103,8 @@ inline SystemModel GearedShafts(int elements, const MeshCore& core) {
     }
     for (int i = 0; i < elements; ++i) {
       b.AddElement("shaft" + std::to_string(s) + "_" + std::to_string(i), ElementKind::kShaft,
-                   {nodes[i], nodes[i + 1]}, K, MatrixX(), M);
+                   {nodes[i], nodes[i + 1]}, K,
+                   shaft_beta > 0.0 ? MatrixX(shaft_beta * K) : MatrixX(), M);
     }
     for (const int end : {0, elements}) {
       b.AddElement("bearing" + std::to_string(s) + "_" + std::to_string(end), ElementKind::kBearing,

@@ -4,9 +4,11 @@
 /// nonlinear HB continuation against slow up- and down-sweeps of an independent GSL rk8pd
 /// time integration (tests/analyses/nonlinear_hb/bk_time_integration.hpp).
 ///
-/// The parameter sets are chosen in the ranges of B&K 1995 (ζ = 0.05…0.1, α ≤ 0.2,
-/// F_m = 0.1) — the paper's OCR is not in shared/references, so its exact sets are not
-/// reproduced; the truth here is the time integration, not the paper.
+/// Two parameter sets: single-sided impacts (x never below −1) and back-side contact (the
+/// upper branch of the softened resonance reaches x < −1). The parameter sets are chosen in the
+/// ranges of B&K 1995 (ζ = 0.05…0.1, α ≤ 0.2, F_m = 0.1) — the paper's OCR is not in
+/// shared/references, so its exact sets are not reproduced; the truth here is the time integration,
+/// not the paper.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -114,6 +116,64 @@ TEST(NonlinearHbBkOscillator, SingleSidedImpactsJumpsMatchTimeIntegration) {
   BkSweep(bk, Range(1.0, 0.81, 0.02), high, 80, 1, &high);
   const auto down = BkSweep(bk, Range(0.80, 0.74, 0.003), high, 120, 4);
   CheckSweep(curve, down, false);
+}
+
+/// Back-side contact (B&K's "double-sided impacts"): with F_a > F_m and ζ = 0.08 the
+/// softening resonance of the contact-loss branch sits near Ω ≈ 0.5; its upper branch reaches
+/// the back flank (x < −1) and ends at an up-sweep jump near Ω = 0.548 onto a branch with
+/// single-sided impacts only, whose down-sweep jump near Ω = 0.484 lands back on the
+/// back-contact branch. Truth: slow GSL sweeps as above.
+TEST(NonlinearHbBkOscillator, BackSideContactJumpsMatchTimeIntegration) {
+  ClearanceOscillatorParameters p;
+  p.zeta = 0.08;
+  p.alpha = 0.15;
+  p.mean_force = 0.1;
+  p.alternating_force = 0.16;
+  NhbOptions options;
+  options.harmonics = 16;
+  NhbContinuationOptions c;
+  c.omega_start = 1.6;  // far above resonance: full contact, the contact guess converges
+  c.omega_end = 0.42;
+  c.max_step = 0.1;
+  c.max_tangent_angle = 0.5;
+  const NhbCurve curve = TraceNonlinearHarmonicBalance(MakeClearanceOscillator(p), options, c);
+  ASSERT_TRUE(curve.summary.ok()) << curve.summary.BriefReport();
+  ASSERT_EQ(curve.folds.size(), 2u);
+  ASSERT_EQ(curve.jumps.size(), 2u);
+  for (const NhbJump& jp : curve.jumps) EXPECT_TRUE(std::isfinite(jp.rms_after));
+
+  const BkParameters bk{p.zeta, p.alpha, p.mean_force, p.alternating_force, 0.0, true};
+  BkState low{1.1, 0.0, 0.0};
+  testing::BkIntegrate(bk, 0.44, 300, 0, low, nullptr);
+  BkSweep(bk, Range(0.44, 0.52, 0.02), low, 80, 1, &low);
+  const auto up = BkSweep(bk, Range(0.53, 0.56, 0.003), low, 120, 4);
+  CheckSweep(curve, up, true);
+  BkState high{1.1, 0.0, 0.0};
+  testing::BkIntegrate(bk, 0.60, 300, 0, high, nullptr);
+  BkSweep(bk, Range(0.60, 0.50, 0.02), high, 80, 1, &high);
+  const auto down = BkSweep(bk, Range(0.497, 0.470, 0.003), high, 120, 4);
+  CheckSweep(curve, down, false);
+
+  // The back flank is reached where claimed: on the branch before the up-sweep jump and after
+  // the down-sweep jump (time integration and HB), not on the branch between the jumps.
+  const int ju = JumpIndex(up), jd = JumpIndex(down);
+  ASSERT_GT(ju, 0);
+  ASSERT_GT(jd, 0);
+  EXPECT_LT(up[ju - 1].minimum, -1.0);
+  EXPECT_GT(up[ju].minimum, -1.0);
+  EXPECT_GT(down[jd - 1].minimum, -1.0);
+  EXPECT_LT(down[jd].minimum, -1.0);
+  int back = 0;
+  for (const NhbPoint& pt : curve.points) {
+    // Right at a fold the lower branch grazes the back flank: skip points within 0.5 %.
+    bool near_fold = false;
+    for (const NhbFold& f : curve.folds) near_fold |= std::abs(pt.omega - f.omega) < 5e-3 * f.omega;
+    if (!pt.stable || near_fold) continue;
+    const bool on_back_branch = pt.rms[0] > 1.0;  // the back-contact branch has RMS > 1.05
+    EXPECT_EQ(pt.minimum[0] < -1.0, on_back_branch) << "Ω = " << pt.omega << " RMS " << pt.rms[0];
+    back += on_back_branch;
+  }
+  EXPECT_GT(back, 3);
 }
 
 }  // namespace

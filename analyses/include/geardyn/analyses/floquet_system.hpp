@@ -37,8 +37,10 @@
 /// the eigenvalue condition number (‖x_i‖‖y_i‖/|y_iᴴx_i|); the √ bound covers double multipliers
 /// (at a transition curve a multiplier error of √δ is unavoidable). kMagnus and kOdeStepper meet
 /// options.tolerance on e (status kToleranceNotMet otherwise). kHill: the multiplier change from
-/// H to the previous (or 2H/3) truncation; kModalProjection: the multiplier change from m to
-/// ⌈1.5m⌉ modes. The verdict is stable when max|λ| ≤ 1 + error_estimate.
+/// H to the previous (or 2H/3) truncation; kModalProjection: from three bases m, ⌈1.5m⌉, ⌈2.25m⌉
+/// 4× the larger of the two multiplier changes (see modal_projection.cpp);
+/// kArpackMonodromy: the Ritz residuals (floquet.hpp). The verdict is stable when max|λ| ≤ 1 +
+/// error_estimate.
 #pragma once
 
 #include <functional>

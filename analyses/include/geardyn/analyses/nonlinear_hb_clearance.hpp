@@ -27,6 +27,8 @@ class NhbClearanceLaw final : public NhbNonlinearLaw {
   void Evaluate(const MatrixX& u, const VectorX& phase, MatrixX& force,
                 MatrixX& jacobian) const override;
   void ContactBranch(MatrixX& stiffness, VectorX& offset) const override;
+  /// (u − b)(u + a) (u − b when a = +∞): positive in contact, ≤ 0 in the gap.
+  bool SwitchFunction(const MatrixX& u, const VectorX& phase, MatrixX& value) const override;
 
  private:
   VectorX stiffness_, modulation_, modulation_phase_, front_gap_, back_gap_;

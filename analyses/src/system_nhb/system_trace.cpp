@@ -1,0 +1,101 @@
+/// @file
+/// @brief TraceSystemNonlinearHb and SolveSystemNonlinearHb (system_nonlinear_hb.hpp): the
+/// engine of nonlinear_hb.hpp on MakeSystemNhbProblem, outputs by SystemPointDescriber.
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+#include "geardyn/analyses/system_nonlinear_hb.hpp"
+#include "geardyn/common/check.hpp"
+#include "system_nhb/system_outputs.hpp"
+
+namespace geardyn {
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+void CheckOptions(const SystemNhbOptions& options) {
+  std::string why;
+  GEARDYN_THROW_UNLESS(options.IsValid(&why), "nonlinear harmonic balance options: " << why);
+}
+
+}  // namespace
+
+bool SystemNhbOptions::IsValid(std::string* why) const {
+  std::ostringstream s;
+  std::string inner;
+  if (!hb.IsValid(&inner)) {
+    s << "hb." << inner;
+  } else if (!(std::isfinite(start_hz) && start_hz > 0.0)) {
+    s << "start_hz: must be a finite mesh frequency > 0 Hz, got " << start_hz;
+  } else if (!(std::isfinite(end_hz) && end_hz > 0.0) || end_hz == start_hz) {
+    s << "end_hz: must be a finite mesh frequency > 0 Hz different from start_hz, got " << end_hz;
+  } else {
+    NhbContinuationOptions c = continuation;
+    c.omega_start = kTwoPi * start_hz;
+    c.omega_end = kTwoPi * end_hz;
+    if (c.IsValid(&inner)) return true;
+    s << "continuation." << inner;
+  }
+  if (why) *why = s.str();
+  return false;
+}
+
+SystemNhbCurve TraceSystemNonlinearHb(const SystemModel& model, const SystemNhbOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  CheckOptions(options);
+  const SystemNhbProblem sp = MakeSystemNhbProblem(model);
+  NhbOptions hb = options.hb;
+  hb.period_multiple *= sp.period_meshes;
+  NhbContinuationOptions c = options.continuation;
+  c.omega_start = kTwoPi * options.start_hz;
+  c.omega_end = kTwoPi * options.end_hz;
+  const NhbCurve curve = TraceNonlinearHarmonicBalance(sp.problem, hb, c);
+
+  SystemNhbCurve out;
+  out.harmonics_used = curve.harmonics_used;
+  out.period_multiple = hb.period_multiple;
+  out.summary = curve.summary;
+  for (const std::string& w : sp.warnings) out.summary.warnings.push_back(w);
+  internal::SystemPointDescriber describer(model, sp, hb, options.compute_element_forces,
+                                           options.keep_response);
+  out.points.reserve(curve.points.size());
+  for (const NhbPoint& p : curve.points) out.points.push_back(describer.Describe(p));
+  for (const NhbFold& f : curve.folds) out.fold_frequencies_hz.push_back(f.omega / kTwoPi);
+  for (const NhbJump& j : curve.jumps) {
+    SystemNhbJump sj;
+    sj.up_sweep = j.up_sweep;
+    sj.mesh_frequency_hz = j.omega / kTwoPi;
+    sj.rms_dte_before = j.rms_before;
+    sj.rms_dte_after = j.rms_after;
+    out.jumps.push_back(sj);
+  }
+  out.summary.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+SystemNhbPoint SolveSystemNonlinearHb(const SystemModel& model, double mesh_frequency_hz,
+                                      const SystemNhbOptions& options, Summary* summary) {
+  GEARDYN_THROW_UNLESS(std::isfinite(mesh_frequency_hz) && mesh_frequency_hz > 0.0,
+                       "mesh_frequency_hz: must be finite and > 0, got " << mesh_frequency_hz);
+  std::string why;
+  GEARDYN_THROW_UNLESS(options.hb.IsValid(&why), "nonlinear harmonic balance options: hb." << why);
+  const SystemNhbProblem sp = MakeSystemNhbProblem(model);
+  NhbOptions hb = options.hb;
+  hb.period_multiple *= sp.period_meshes;
+  const NhbSolveResult r =
+      SolveNonlinearHarmonicBalance(sp.problem, kTwoPi * mesh_frequency_hz, hb);
+  internal::SystemPointDescriber describer(model, sp, hb, options.compute_element_forces,
+                                           options.keep_response);
+  SystemNhbPoint out = describer.Describe(r.point);
+  if (summary) {
+    *summary = r.summary;
+    for (const std::string& w : sp.warnings) summary->warnings.push_back(w);
+  }
+  return out;
+}
+
+}  // namespace geardyn

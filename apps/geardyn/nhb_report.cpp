@@ -1,0 +1,282 @@
+#include "geardyn/nhb_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+#include "geardyn/svg_plot.hpp"
+
+namespace geardyn::app {
+namespace {
+
+using nlohmann::json;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr int kMaxTableRows = 60;
+
+// A number, or null when it is not finite (JSON has no NaN or infinity).
+json Finite(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json FiniteArray(const double* data, Eigen::Index n) {
+  json a = json::array();
+  for (Eigen::Index i = 0; i < n; ++i) a.push_back(Finite(data[i]));
+  return a;
+}
+
+std::string Num(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.9g", v);
+  return buffer;
+}
+
+// A JSON number for the table, NaN for null.
+double Get(const json& v) { return v.is_number() ? v.get<double>() : kNaN; }
+
+bool PointOk(const SystemNhbPoint& p) { return p.point.status == Status::kSuccess; }
+
+}  // namespace
+
+json MakeNhbReport(const std::string& scene_source, const NhbRunInfo& info,
+                   const SystemNhbCurve& curve, const std::vector<std::string>& scene_warnings) {
+  json report;
+  report["scene"] = scene_source;
+  report["mode"] = "nonlinear";
+  report["mesh_frequency"] = {
+      {"start_hz", info.start_hz}, {"end_hz", info.end_hz}, {"resolution", info.resolution}};
+  report["harmonics"] = curve.harmonics_used;
+  report["harmonics_requested"] = info.harmonics_requested;
+  report["tolerance"] = info.tolerance;
+  report["period_multiple"] = curve.period_multiple;
+  report["stability"] = info.stability;
+  report["status"] = StatusName(curve.summary.status);
+  report["message"] = curve.summary.message;
+  report["error_estimate"] = Finite(curve.summary.error_estimate);
+  json warnings = json::array();
+  for (const std::string& w : scene_warnings) warnings.push_back("scene: " + w);
+  for (const std::string& w : curve.summary.warnings) warnings.push_back(w);
+  report["warnings"] = warnings;
+  report["meshes"] = json::array();
+  report["elements"] = json::array();
+  if (!curve.points.empty()) {
+    for (const SystemNhbMeshOutput& m : curve.points.front().meshes) {
+      report["meshes"].push_back(m.name);
+    }
+    for (const SystemNhbElementOutput& e : curve.points.front().elements) {
+      report["elements"].push_back(e.name);
+    }
+  }
+  json points = json::array();
+  for (const SystemNhbPoint& r : curve.points) {
+    json p;
+    p["mesh_frequency_hz"] = Finite(r.mesh_frequency_hz);
+    p["branch"] = r.point.branch;
+    p["stable"] = r.point.stable;
+    p["max_multiplier"] = Finite(r.point.max_multiplier);
+    p["error_estimate"] = Finite(r.point.error_estimate);
+    p["status"] = StatusName(r.point.status);
+    json meshes = json::array();
+    for (const SystemNhbMeshOutput& m : r.meshes) {
+      meshes.push_back(
+          {{"name", m.name},
+           {"rms_dte_m", Finite(m.rms_dte)},
+           {"peak_to_peak_dte_m", Finite(m.peak_to_peak_dte)},
+           {"mean_dte_m", Finite(m.mean_dte)},
+           {"dte_amplitudes_m", FiniteArray(m.dte_amplitudes.data(), m.dte_amplitudes.size())},
+           {"mean_force_n", Finite(m.mean_force)},
+           {"rms_force_n", Finite(m.rms_force)},
+           {"min_force_n", Finite(m.min_force)},
+           {"max_force_n", Finite(m.max_force)},
+           {"contact_loss_fraction", Finite(m.contact_loss_fraction)},
+           {"back_contact", m.back_contact}});
+    }
+    p["meshes"] = meshes;
+    json elements = json::array();
+    for (const SystemNhbElementOutput& e : r.elements) {
+      elements.push_back({{"name", e.name},
+                          {"mean_force", FiniteArray(e.mean_force.data(), 6)},
+                          {"rms_force", FiniteArray(e.rms_force.data(), 6)}});
+    }
+    p["elements"] = elements;
+    points.push_back(p);
+  }
+  report["points"] = points;
+  report["folds_hz"] = FiniteArray(curve.fold_frequencies_hz.data(),
+                                   static_cast<Eigen::Index>(curve.fold_frequencies_hz.size()));
+  json jumps = json::array();
+  for (const SystemNhbJump& j : curve.jumps) {
+    jumps.push_back({{"direction", j.up_sweep ? "up" : "down"},
+                     {"mesh_frequency_hz", Finite(j.mesh_frequency_hz)},
+                     {"rms_dte_before_m", Finite(j.rms_dte_before)},
+                     {"rms_dte_after_m", Finite(j.rms_dte_after)}});
+  }
+  report["jumps"] = jumps;
+  report["wall_time_s"] = curve.summary.wall_time_s;
+  return report;
+}
+
+std::string FormatNhbCsv(const SystemNhbCurve& curve) {
+  static const char* const kComponents[6] = {"fx_n", "fy_n", "fz_n", "mx_nm", "my_nm", "mz_nm"};
+  std::ostringstream os;
+  os << "mesh_frequency_hz,branch,stable,max_multiplier,error_estimate,status";
+  if (!curve.points.empty()) {
+    for (const SystemNhbMeshOutput& m : curve.points.front().meshes) {
+      const std::string& n = m.name;
+      os << "," << n << ":rms_dte_m," << n << ":peak_to_peak_dte_m," << n << ":mean_dte_m";
+      for (int h = 1; h <= kNhbCsvHarmonics; ++h) os << "," << n << ":a" << h << "_m";
+      os << "," << n << ":mean_force_n," << n << ":rms_force_n," << n << ":min_force_n," << n
+         << ":max_force_n," << n << ":contact_loss_fraction," << n << ":back_contact";
+    }
+    for (const SystemNhbElementOutput& e : curve.points.front().elements) {
+      for (const char* which : {"mean_", "rms_"}) {
+        for (const char* c : kComponents) os << "," << e.name << ":" << which << c;
+      }
+    }
+  }
+  os << "\n";
+  for (const SystemNhbPoint& r : curve.points) {
+    os << Num(r.mesh_frequency_hz) << "," << r.point.branch << "," << (r.point.stable ? 1 : 0)
+       << "," << Num(r.point.max_multiplier) << "," << Num(r.point.error_estimate) << ","
+       << StatusName(r.point.status);
+    for (const SystemNhbMeshOutput& m : r.meshes) {
+      os << "," << Num(m.rms_dte) << "," << Num(m.peak_to_peak_dte) << "," << Num(m.mean_dte);
+      for (int h = 1; h <= kNhbCsvHarmonics; ++h) {
+        os << ",";
+        if (h < m.dte_amplitudes.size()) os << Num(m.dte_amplitudes(h));
+      }
+      os << "," << Num(m.mean_force) << "," << Num(m.rms_force) << "," << Num(m.min_force) << ","
+         << Num(m.max_force) << "," << Num(m.contact_loss_fraction) << ","
+         << (m.back_contact ? 1 : 0);
+    }
+    for (const SystemNhbElementOutput& e : r.elements) {
+      for (int c = 0; c < 6; ++c) os << "," << Num(e.mean_force(c));
+      for (int c = 0; c < 6; ++c) os << "," << Num(e.rms_force(c));
+    }
+    os << "\n";
+  }
+  return os.str();
+}
+
+std::string FormatNhbText(const json& report) {
+  std::ostringstream os;
+  const auto& points = report["points"];
+  os << "harmonic balance (nonlinear: contact loss, back-flank contact) of "
+     << report["scene"].get<std::string>() << ": " << points.size()
+     << " points, H = " << report["harmonics"].get<int>();
+  if (report["period_multiple"].get<int>() > 1) {
+    os << " of f_mesh/" << report["period_multiple"].get<int>();
+  }
+  os << ", stability " << report["stability"].get<std::string>() << ", status "
+     << report["status"].get<std::string>() << "\n";
+  const std::size_t stride = (points.size() + kMaxTableRows - 1) / kMaxTableRows;
+  char line[320];
+  std::snprintf(line, sizeof(line), "%12s %6s %-8s %10s  %-16s %11s %11s %11s %11s %11s %6s\n",
+                "f_mesh [Hz]", "branch", "stable", "max|mu|", "mesh", "RMS DTE[um]", "p-p DTE[um]",
+                "mean F [N]", "min F [N]", "max F [N]", "loss");
+  os << line;
+  std::vector<std::size_t> rows;  // every stride-th point and the last one
+  for (std::size_t i = 0; i < points.size(); i += std::max<std::size_t>(stride, 1))
+    rows.push_back(i);
+  if (!points.empty() && rows.back() + 1 != points.size()) rows.push_back(points.size() - 1);
+  for (const std::size_t i : rows) {
+    const auto& p = points[i];
+    for (const auto& m : p["meshes"]) {
+      std::snprintf(line, sizeof(line),
+                    "%12.2f %6d %-8s %10.6f  %-16s %11.5g %11.5g %11.5g %11.5g %11.5g %5.1f%%%s\n",
+                    Get(p["mesh_frequency_hz"]), p["branch"].get<int>(),
+                    p["stable"].get<bool>() ? "yes" : "no", Get(p["max_multiplier"]),
+                    m["name"].get<std::string>().c_str(), 1e6 * Get(m["rms_dte_m"]),
+                    1e6 * Get(m["peak_to_peak_dte_m"]), Get(m["mean_force_n"]),
+                    Get(m["min_force_n"]), Get(m["max_force_n"]),
+                    100.0 * Get(m["contact_loss_fraction"]),
+                    p["status"].get<std::string>() == "success" ? "" : "  (!)");
+      os << line;
+    }
+  }
+  if (!report["folds_hz"].empty()) {
+    os << "folds [Hz]:";
+    for (const auto& f : report["folds_hz"]) os << " " << Num(Get(f));
+    os << "\n";
+  }
+  if (report["jumps"].empty()) {
+    os << "jumps: none in the traced range\n";
+  } else {
+    os << "jumps (first mesh):\n";
+    for (const auto& j : report["jumps"]) {
+      std::snprintf(line, sizeof(line), "  %-4s sweep at %10.2f Hz: RMS DTE %.5g -> %.5g um\n",
+                    j["direction"].get<std::string>().c_str(), Get(j["mesh_frequency_hz"]),
+                    1e6 * Get(j["rms_dte_before_m"]), 1e6 * Get(j["rms_dte_after_m"]));
+      os << line;
+    }
+  }
+  if (!report["message"].get<std::string>().empty()) {
+    os << "message: " << report["message"].get<std::string>() << "\n";
+  }
+  for (const auto& w : report["warnings"]) os << "warning: " << w.get<std::string>() << "\n";
+  return os.str();
+}
+
+std::string RenderNhbPlot(const SystemNhbCurve& curve, const std::string& title) {
+  static const std::string kCurveColour = "#1f77b4";
+  PlotSpec spec;
+  spec.title = title;
+  spec.x_label = "mesh frequency [Hz]";
+  PlotPanel panel;
+  const bool has_mesh = !curve.points.empty() && !curve.points.front().meshes.empty();
+  panel.y_label =
+      "RMS DTE [um]" + (has_mesh ? " (" + curve.points.front().meshes.front().name + ")" : "");
+  if (has_mesh) {
+    // Runs of equal stability; a new run starts at the last point of the previous one so that
+    // the curve stays connected. A point that did not converge breaks the curve.
+    bool have_previous = false;
+    bool labelled_stable = false, labelled_unstable = false;
+    double previous_x = 0.0, previous_y = 0.0;
+    for (const SystemNhbPoint& r : curve.points) {
+      if (!PointOk(r)) {
+        have_previous = false;
+        continue;
+      }
+      const double x = r.mesh_frequency_hz, y = 1e6 * r.meshes.front().rms_dte;
+      const bool stable = r.point.stable;
+      if (!have_previous || panel.series.back().dashed == stable) {
+        PlotSeries run;
+        run.colour = kCurveColour;
+        run.dashed = !stable;
+        bool& labelled = stable ? labelled_stable : labelled_unstable;
+        if (!labelled) run.label = stable ? "stable" : "unstable (dashed)";
+        labelled = true;
+        if (have_previous) {
+          run.x.push_back(previous_x);
+          run.y.push_back(previous_y);
+        }
+        panel.series.push_back(run);
+      }
+      panel.series.back().x.push_back(x);
+      panel.series.back().y.push_back(y);
+      previous_x = x;
+      previous_y = y;
+      have_previous = true;
+    }
+    for (const SystemNhbJump& j : curve.jumps) {
+      const std::string colour = j.up_sweep ? "#d62728" : "#2ca02c";
+      const double before = 1e6 * j.rms_dte_before, after = 1e6 * j.rms_dte_after;
+      char label[64];
+      std::snprintf(label, sizeof(label), "%s %.0f Hz", j.up_sweep ? "up" : "down",
+                    j.mesh_frequency_hz);
+      panel.markers.push_back({j.mesh_frequency_hz, before, label, colour});
+      if (std::isfinite(after)) {
+        PlotSeries arrow;
+        arrow.colour = "#7f7f7f";
+        arrow.x = {j.mesh_frequency_hz, j.mesh_frequency_hz};
+        arrow.y = {before, after};
+        panel.series.push_back(arrow);
+        panel.markers.push_back({j.mesh_frequency_hz, after, "", colour});
+      }
+    }
+  }
+  spec.panels.push_back(panel);
+  return RenderSvg(spec);
+}
+
+}  // namespace geardyn::app

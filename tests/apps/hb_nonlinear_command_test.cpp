@@ -1,0 +1,209 @@
+// `geardyn hb` on a scene with a slice mesh: the nonlinear harmonic balance (contact loss). The
+// Kahraman–Blankenship rig at 100 N·m has its primary-resonance up-sweep jump near 2686 Hz
+// (H = 32, traced by the library), so a short trace across it must show an unstable branch and
+// an up-sweep jump. Truths: Parseval (the RMS DTE is √(Σ a_k²/2) of the reported amplitudes),
+// the geometry of a fold (an up-sweep jump is a local maximum of f_m along the trace, and the
+// stability changes between neighbouring points within one continuation step of it), the static
+// balance of the mean mesh force with the pinion torque over the base radius, the CSV shape, the
+// dashed unstable branch in the SVG, and the error for --nonlinear without slices.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "geardyn/cli.hpp"
+#include "support/cli_run.hpp"
+
+namespace geardyn::app {
+namespace {
+
+using nlohmann::json;
+using test::CliRun;
+using test::RunGeardyn;
+using test::RunJson;
+
+// ~50 points (the continuation steps ~0.5 Hz along the unstable branch until it is half the
+// range below lo); about 6 s in Debug.
+constexpr double kLoHz = 2680.0, kHiHz = 2700.0;
+constexpr int kResolution = 2;
+
+std::vector<std::string> SliceRig(std::vector<std::string> head) {
+  const std::vector<std::string> sets = {"--set", "mesh.pinion-wheel.model=\"slices\"",
+                                         "--set", "mesh.pinion-wheel.slices=10",
+                                         "--set", "mesh.pinion-wheel.center_distance=0.1502",
+                                         "--set", "mesh.pinion-wheel.damping_ratio=0.05"};
+  std::vector<std::string> args = {"hb", "builtin:kahraman-blankenship-rig"};
+  args.insert(args.end(), head.begin(), head.end());
+  args.insert(args.end(), sets.begin(), sets.end());
+  return args;
+}
+
+std::string ReadFile(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+bool AllNumbers(const json& v) {
+  if (v.is_array()) {
+    for (const json& e : v) {
+      if (!e.is_number()) return false;
+    }
+    return true;
+  }
+  return v.is_number() && std::isfinite(v.get<double>());
+}
+
+// RMS² of DTE − mean from the one-sided amplitudes a_k = 2|Y_k|, k ≥ 1: Σ a_k²/2 (Parseval).
+double ParsevalRms(const json& amplitudes) {
+  double sum = 0.0;
+  for (std::size_t k = 1; k < amplitudes.size(); ++k) {
+    const double a = amplitudes[k].get<double>();
+    sum += 0.5 * a * a;
+  }
+  return std::sqrt(sum);
+}
+
+void ExpectFinitePoint(const json& p) {
+  EXPECT_TRUE(AllNumbers(p["mesh_frequency_hz"]));
+  EXPECT_TRUE(AllNumbers(p["max_multiplier"]));
+  EXPECT_TRUE(AllNumbers(p["error_estimate"]));
+  for (const json& m : p["meshes"]) {
+    for (const char* key :
+         {"rms_dte_m", "peak_to_peak_dte_m", "mean_dte_m", "dte_amplitudes_m", "mean_force_n",
+          "rms_force_n", "min_force_n", "max_force_n", "contact_loss_fraction"}) {
+      EXPECT_TRUE(AllNumbers(m[key])) << key << " at " << p["mesh_frequency_hz"];
+    }
+  }
+  for (const json& e : p["elements"]) {
+    EXPECT_TRUE(AllNumbers(e["mean_force"]) && AllNumbers(e["rms_force"])) << e["name"];
+  }
+}
+
+TEST(HbNonlinearCommandTest, TraceAcrossThePrimaryResonanceFoldShowsTheJump) {
+  const std::filesystem::path dir =
+      std::filesystem::path(GEARDYN_BINARY_DIR) / "test_output" / "hb_nonlinear_command_test";
+  std::filesystem::remove_all(dir);
+  const std::string range =
+      std::to_string(kLoHz) + ":" + std::to_string(kHiHz) + ":" + std::to_string(kResolution);
+  const CliRun run = RunGeardyn(SliceRig({"--mesh-frequency", range, "--harmonics", "16",
+                                          "--progress", "--json", "--out", dir.string()}));
+  ASSERT_EQ(run.code, kExitOk) << run.err;
+  EXPECT_NE(run.err.find("geardyn hb: "), std::string::npos) << run.err;  // --progress
+  const json report = json::parse(run.out);
+  EXPECT_EQ(report["mode"], "nonlinear");
+  EXPECT_EQ(report["harmonics"], 16);
+  const json& points = report["points"];
+  ASSERT_GE(points.size(), static_cast<std::size_t>(kResolution));
+
+  int unstable = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const json& p = points[i];
+    ExpectFinitePoint(p);
+    if (i > 0) {
+      EXPECT_GE(p["branch"].get<int>(), points[i - 1]["branch"].get<int>());
+    }
+    if (!p["stable"].get<bool>()) ++unstable;
+    const json& m = p["meshes"][0];
+    ASSERT_EQ(m["dte_amplitudes_m"].size(), 17u);  // |mean| and harmonics 1 … 16
+    EXPECT_NEAR(m["rms_dte_m"].get<double>(), ParsevalRms(m["dte_amplitudes_m"]),
+                1e-8 * m["rms_dte_m"].get<double>());
+    EXPECT_NEAR(std::abs(m["mean_dte_m"].get<double>()), m["dte_amplitudes_m"][0].get<double>(),
+                1e-12);
+  }
+  EXPECT_GE(unstable, 1);
+
+  // Every jump sits at a fold; the branch id increments there. An up-sweep jump is a local
+  // maximum of f_m along the trace (both neighbours at most at f_jump), and the stability
+  // flips between neighbouring points within one step (≤ range/n in f_m) of the fold, at most
+  // 5 points away (near the fold |μ| ≈ 1 and the verdict settles a few points later).
+  ASSERT_GE(report["jumps"].size(), 1u);
+  const double step_hz = (kHiHz - kLoHz) / kResolution;
+  const json& folds = report["folds_hz"];
+  for (const json& jump : report["jumps"]) {
+    const double f = jump["mesh_frequency_hz"].get<double>();
+    EXPECT_GE(f, kLoHz);
+    EXPECT_LE(f, kHiHz);
+    std::size_t fold = folds.size();
+    for (std::size_t k = 0; k < folds.size(); ++k) {
+      if (folds[k].get<double>() == f) fold = k;
+    }
+    ASSERT_LT(fold, folds.size()) << "jump at " << f << " Hz is not a fold";
+    std::size_t first = 0;  // the first point after the fold: branch id fold + 1
+    while (first < points.size() &&
+           points[first]["branch"].get<int>() < static_cast<int>(fold) + 1) {
+      ++first;
+    }
+    ASSERT_TRUE(first > 0 && first < points.size());
+    const double before = points[first - 1]["mesh_frequency_hz"].get<double>();
+    const double after = points[first]["mesh_frequency_hz"].get<double>();
+    if (jump["direction"] == "up") {
+      EXPECT_GE(f, std::max(before, after) - 1e-5 * f);
+    } else {
+      EXPECT_LE(f, std::min(before, after) + 1e-5 * f);
+    }
+    bool flips = false;
+    for (std::size_t i = first > 5 ? first - 5 : 1; i < std::min(points.size(), first + 6); ++i) {
+      const bool a = points[i - 1]["stable"].get<bool>(), b = points[i]["stable"].get<bool>();
+      const double fa = points[i - 1]["mesh_frequency_hz"].get<double>();
+      const double fb = points[i]["mesh_frequency_hz"].get<double>();
+      if (a != b && std::abs(fa - f) <= step_hz && std::abs(fb - f) <= step_hz) flips = true;
+    }
+    EXPECT_TRUE(flips) << "no stability change next to the " << jump["direction"] << " jump at "
+                       << f << " Hz";
+  }
+
+  // CSV: a header with units and one row per traced point.
+  std::istringstream csv(ReadFile(dir / "nhb.csv"));
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(csv, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), points.size() + 1);
+  EXPECT_EQ(lines[0].rfind("mesh_frequency_hz,branch,stable,max_multiplier", 0), 0u);
+  EXPECT_NE(lines[0].find("pinion-wheel:rms_dte_m"), std::string::npos);
+  EXPECT_NE(lines[0].find("pinion-wheel:max_force_n"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir / "nhb.json"));
+  // SVG: the unstable branch dashed, the jump marked.
+  const std::string svg = ReadFile(dir / "nhb_rms_dte.svg");
+  EXPECT_NE(svg.find("<svg"), std::string::npos);
+  EXPECT_NE(svg.find("stroke-dasharray"), std::string::npos);
+  EXPECT_NE(svg.find("<circle"), std::string::npos);
+}
+
+// One frequency well below the resonance: one periodic solution. Its mean mesh force balances
+// the pinion torque (100 N·m) over the pinion base radius (damping forces have zero mean in a
+// periodic state), with the base radius from `geardyn info`.
+TEST(HbNonlinearCommandTest, SingleFrequencyMeanForceBalancesTheTorque) {
+  const json report =
+      RunJson(SliceRig({"--mesh-frequency", "1000", "--harmonics", "8", "--nonlinear"}));
+  EXPECT_EQ(report["mode"], "nonlinear");
+  ASSERT_EQ(report["points"].size(), 1u);
+  const json& m = report["points"][0]["meshes"][0];
+  EXPECT_NEAR(m["rms_dte_m"].get<double>(), ParsevalRms(m["dte_amplitudes_m"]),
+              1e-8 * m["rms_dte_m"].get<double>());
+  const json info = RunJson({"info", "builtin:kahraman-blankenship-rig"});
+  const double base_radius = info["meshes"][0]["base_radius_pinion"].get<double>();
+  EXPECT_NEAR(m["mean_force_n"].get<double>(), 100.0 / base_radius, 1e-3 * 100.0 / base_radius);
+}
+
+TEST(HbNonlinearCommandTest, NonlinearWithoutSliceMeshIsAnError) {
+  const CliRun run = RunGeardyn(
+      {"hb", "builtin:kahraman-blankenship-rig", "--nonlinear", "--mesh-frequency", "1000"});
+  EXPECT_EQ(run.code, kExitBadInput);
+  EXPECT_NE(run.err.find("--nonlinear"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("mesh.pinion-wheel.model=\"slices\""), std::string::npos) << run.err;
+}
+
+TEST(HbNonlinearCommandTest, LinearFlagKeepsTheLinearReport) {
+  const json report =
+      RunJson(SliceRig({"--mesh-frequency", "1000:2000:3", "--harmonics", "4", "--linear"}));
+  EXPECT_EQ(report["mode"], "linear");
+  ASSERT_EQ(report["points"].size(), 3u);
+  EXPECT_EQ(report["points"][0]["method"].is_string(), true);
+}
+
+}  // namespace
+}  // namespace geardyn::app
