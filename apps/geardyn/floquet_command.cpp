@@ -18,24 +18,12 @@
 namespace geardyn::app {
 namespace {
 
-constexpr FloquetMethod kMethods[] = {
-    FloquetMethod::kAuto,           FloquetMethod::kExactSteps, FloquetMethod::kMagnus,
-    FloquetMethod::kOdeStepper,     FloquetMethod::kHill,       FloquetMethod::kModalProjection,
-    FloquetMethod::kArpackMonodromy};
-
 struct FloquetCommandOptions {
   SceneCommandOptions scene;
   std::string method = "auto";
   double tolerance = 1e-10;
   int nev = 6;
 };
-
-FloquetMethod ParseMethod(const std::string& name) {
-  for (FloquetMethod m : kMethods) {
-    if (name == ToString(m)) return m;
-  }
-  throw InvalidInput("--method: unknown Floquet method '" + name + "'");
-}
 
 nlohmann::json MakeFloquetReport(const Scene& scene, const std::string& requested,
                                  double mesh_frequency_hz, int num_dofs, const FloquetResult& r,
@@ -108,7 +96,7 @@ std::string MultipliersCsv(const FloquetResult& r) {
 
 int RunFloquet(const FloquetCommandOptions& opts, std::ostream& out) {
   FloquetOptions options;
-  options.method = ParseMethod(opts.method);
+  options.method = ParseFloquetMethod(opts.method, "--method");
   options.tolerance = opts.tolerance;
   options.arpack_nev = opts.nev;
   const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
@@ -142,7 +130,7 @@ Command AddFloquetCommand(CLI::App& app) {
       "Floquet multipliers, max|λ|, stability margin and verdict of the scene's LTV system");
   AddSceneOptions(cmd, &opts->scene);
   std::vector<std::string> names;
-  for (FloquetMethod m : kMethods) names.push_back(ToString(m));
+  for (FloquetMethod m : kFloquetMethods) names.push_back(ToString(m));
   cmd->add_option(
          "--method", opts->method,
          "auto, exact_steps, magnus, ode_stepper, hill, modal_projection or arpack_monodromy "

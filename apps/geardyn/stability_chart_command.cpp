@@ -32,15 +32,6 @@ struct ChartCommandOptions {
   bool quiet = false;
 };
 
-FloquetMethod ParseMethod(const std::string& name) {
-  for (FloquetMethod m :
-       {FloquetMethod::kAuto, FloquetMethod::kExactSteps, FloquetMethod::kMagnus,
-        FloquetMethod::kOdeStepper, FloquetMethod::kHill, FloquetMethod::kModalProjection}) {
-    if (name == ToString(m)) return m;
-  }
-  throw InvalidInput("--method: unknown Floquet method '" + name + "'");
-}
-
 std::string RegionLabel(const ChartRegion& r) {
   return r.labelled ? r.resonance.label : std::string("unstable");
 }
@@ -209,7 +200,7 @@ int RunChart(const ChartCommandOptions& opts, std::ostream& out, std::ostream& e
   settings.overrides = opts.scene.overrides;
   settings.x = ParseChartAxis("--x", opts.x);
   settings.y = ParseChartAxis("--y", opts.y);
-  settings.floquet.method = ParseMethod(opts.method);
+  settings.floquet.method = ParseFloquetMethod(opts.method, "--method");
   settings.floquet.tolerance = opts.tolerance;
   settings.chart.num_threads = opts.threads;
   settings.chart.boundary_tolerance = opts.boundary_tolerance;
@@ -261,11 +252,12 @@ Command AddStabilityChartCommand(CLI::App& app) {
       ->required();
   cmd->add_option("--threads", opts->threads, "threads (default 0 = all cores)")
       ->check(CLI::NonNegativeNumber);
+  std::vector<std::string> methods;
+  for (FloquetMethod m : kFloquetMethods) methods.push_back(ToString(m));
   cmd->add_option("--method", opts->method,
                   "Floquet method: auto, exact_steps, magnus, ode_stepper, hill, "
-                  "modal_projection (default auto)")
-      ->check(CLI::IsMember(
-          {"auto", "exact_steps", "magnus", "ode_stepper", "hill", "modal_projection"}));
+                  "modal_projection or arpack_monodromy (default auto)")
+      ->check(CLI::IsMember(methods));
   cmd->add_option("--tolerance", opts->tolerance, "Floquet error target (default 1e-10)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--boundary-tolerance", opts->boundary_tolerance,

@@ -83,6 +83,31 @@ TEST(FloquetCommand, TextOutputAndFiles) {
   EXPECT_EQ(lines, 1 + 2 * j["num_dofs"].get<int>());
 }
 
+// `--method arpack_monodromy --nev` end to end against the exact step product of the same damped
+// rig: the largest |λ| agrees within the two error estimates (the ARPACK path itself is tested on
+// ≥ 200 DOF in tests/analyses/floquet/arpack_monodromy_test.cpp).
+TEST(FloquetCommand, ArpackDominantMultiplierMatchesExactSteps) {
+  const std::vector<std::string> damped = {"--set", "mesh.pinion-wheel.damping_ratio=0.05"};
+  std::vector<std::string> a = {"floquet", kRig, "--method", "arpack_monodromy", "--nev", "4"};
+  std::vector<std::string> e = {"floquet", kRig};
+  a.insert(a.end(), damped.begin(), damped.end());
+  e.insert(e.end(), damped.begin(), damped.end());
+  const nlohmann::json arpack = RunJson(a);
+  const nlohmann::json exact = RunJson(e);
+  EXPECT_EQ(arpack["method_used"], "arpack_monodromy");
+  EXPECT_EQ(exact["method_used"], "exact_steps");
+  // ≥ nev: blocks too small for ARPACK get all their multipliers from the dense path.
+  EXPECT_GE(arpack["multipliers"].size(), 4u);
+  const double tol =
+      1e-9 + arpack["error_estimate"].get<double>() + exact["error_estimate"].get<double>();
+  EXPECT_NEAR(arpack["max_abs_multiplier"].get<double>(), exact["max_abs_multiplier"].get<double>(),
+              tol);
+  const test::CliRun bad =
+      RunGeardyn({"floquet", kRig, "--method", "arpack_monodromy", "--nev", "0"});
+  EXPECT_EQ(bad.code, app::kExitBadInput);
+  EXPECT_NE(bad.err.find("nev"), std::string::npos) << bad.err;
+}
+
 TEST(FloquetCommand, BadInputExitsWithTwo) {
   const test::CliRun method = RunGeardyn({"floquet", kRig, "--method", "rk4"});
   EXPECT_EQ(method.code, app::kExitBadInput);

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "geardyn/analyses/floquet.hpp"
+#include "geardyn/common/errors.hpp"
 
 namespace geardyn {
 
@@ -24,6 +25,15 @@ const char* ToString(FloquetMethod method) {
       return "arpack_monodromy";
   }
   return "unknown";
+}
+
+FloquetMethod ParseFloquetMethod(const std::string& name, const std::string& field) {
+  std::string names;
+  for (FloquetMethod m : kFloquetMethods) {
+    if (name == ToString(m)) return m;
+    names += (names.empty() ? "" : ", ") + std::string(ToString(m));
+  }
+  throw InvalidInput(field + ": unknown Floquet method '" + name + "' (one of " + names + ")");
 }
 
 bool FloquetOptions::IsValid(std::string* why) const {

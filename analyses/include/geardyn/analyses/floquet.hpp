@@ -77,6 +77,14 @@ enum class FloquetMethod {
 };
 /// "auto", "exact_steps", "magnus", "ode_stepper", "hill", "modal_projection", "arpack_monodromy".
 const char* ToString(FloquetMethod method);
+/// Every FloquetMethod, kAuto first (for option lists and parsers).
+inline constexpr FloquetMethod kFloquetMethods[] = {
+    FloquetMethod::kAuto,           FloquetMethod::kExactSteps, FloquetMethod::kMagnus,
+    FloquetMethod::kOdeStepper,     FloquetMethod::kHill,       FloquetMethod::kModalProjection,
+    FloquetMethod::kArpackMonodromy};
+/// @brief The method named `name` (a ToString value).
+/// @throws InvalidInput naming `field` and the accepted names for an unknown name.
+FloquetMethod ParseFloquetMethod(const std::string& name, const std::string& field = "method");
 
 /// @brief Options of ComputeFloquet.
 struct FloquetOptions {
