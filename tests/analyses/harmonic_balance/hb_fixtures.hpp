@@ -57,19 +57,8 @@ inline SystemModel TorsionalPair(const MeshCore& core, double torque = 200.0) {
 inline SystemModel PlanarTwoMesh(const MeshCore& core_a, const MeshCore& core_b, double offset_b,
                                  double modal_zeta) {
   const HandPairParams p;
-  SystemBuilder builder;
-  const BodyIndex pinion = builder.AddBody("pinion", DiagMass(p.m1, p.Id1, p.I1));
-  const BodyIndex a = builder.AddBody("wheel-a", DiagMass(p.m2, p.Id2, p.I2), Vector3(0.13, 0, 0));
-  const BodyIndex b =
-      builder.AddBody("wheel-b", DiagMass(0.7 * p.m2, p.Id2, 0.8 * p.I2), Vector3(-0.13, 0, 0));
-  Vector6 kb;
-  kb << p.bearing, 0.6 * p.bearing, p.bearing, 0.01 * p.bearing, 0.01 * p.bearing, 0.0;
-  for (const BodyIndex body : {pinion, a, b}) {
-    builder.AddElement("bearing" + std::to_string(body.value()), ElementKind::kBearing, {body},
-                       MatrixX(kb.asDiagonal()));
-  }
-  builder.AddMesh("mesh-a", pinion, a, HandPairJacobian(p), core_a);
-  builder.AddMesh("mesh-b", pinion, b, HandPairJacobian(p), core_b, std::nullopt, 1.0, offset_b);
+  SystemBuilder builder = TwoMeshBuilder(core_a, core_b, offset_b, 0.6);
+  const BodyIndex pinion(0), a(1), b(2);
   Vector6 t = Vector6::Zero();
   t(5) = 300.0;
   builder.AddTorque(pinion, t, "drive");

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <vector>
 
+#include "analyses/nonlinear_hb/bk_parameter_sets.hpp"
 #include "analyses/nonlinear_hb/bk_time_integration.hpp"
 #include "geardyn/analyses/nonlinear_hb.hpp"
 #include "geardyn/analyses/nonlinear_hb_clearance.hpp"
@@ -83,11 +84,7 @@ void CheckSweep(const NhbCurve& curve, const std::vector<BkStats>& sweep, bool u
 }
 
 TEST(NonlinearHbBkOscillator, SingleSidedImpactsJumpsMatchTimeIntegration) {
-  ClearanceOscillatorParameters p;
-  p.zeta = 0.05;
-  p.alpha = 0.1;
-  p.mean_force = 0.1;
-  p.alternating_force = 0.03;
+  const ClearanceOscillatorParameters p = testing::BkSingleSidedSet();
   NhbOptions options;
   options.harmonics = 16;
   NhbContinuationOptions c;

@@ -10,6 +10,7 @@
 #include <complex>
 #include <numbers>
 
+#include "analyses/nonlinear_hb/bk_parameter_sets.hpp"
 #include "analyses/nonlinear_hb/bk_time_integration.hpp"
 #include "geardyn/analyses/nonlinear_hb.hpp"
 #include "geardyn/analyses/nonlinear_hb_clearance.hpp"
@@ -17,14 +18,7 @@
 namespace geardyn {
 namespace {
 
-ClearanceOscillatorParameters SetA() {
-  ClearanceOscillatorParameters p;
-  p.zeta = 0.05;
-  p.alpha = 0.1;
-  p.mean_force = 0.1;
-  p.alternating_force = 0.03;
-  return p;
-}
+ClearanceOscillatorParameters SetA() { return testing::BkSingleSidedSet(); }
 
 /// The traced curve, computed once for all tests of this file.
 const NhbCurve& TraceSetA() {

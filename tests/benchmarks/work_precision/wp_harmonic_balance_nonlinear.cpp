@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "../../analyses/nonlinear_hb/bk_parameter_sets.hpp"
 #include "geardyn/analyses/nonlinear_hb.hpp"
 #include "geardyn/analyses/nonlinear_hb_clearance.hpp"
 #include "wp_common.hpp"
@@ -24,14 +25,7 @@ using namespace geardyn;
 
 namespace {
 
-ClearanceOscillatorParameters Params() {
-  ClearanceOscillatorParameters p;
-  p.zeta = 0.05;
-  p.alpha = 0.1;
-  p.mean_force = 0.1;
-  p.alternating_force = 0.03;
-  return p;
-}
+ClearanceOscillatorParameters Params() { return testing::BkSingleSidedSet(); }
 
 NhbContinuationOptions Range(double max_step) {
   NhbContinuationOptions c;

@@ -34,9 +34,10 @@ inline FourierCoefficient SmoothStiffness(double k, double a, double c, double b
   return FourierCoefficient::FromCosSin(mean, cosines, sines);
 }
 
-/// Pinion (body 0) driving wheel A (body 1) through "mesh-a" and wheel B (body 2) through "mesh-b".
-inline SystemModel TwoMeshSystem(const MeshCore& core_a, const MeshCore& core_b,
-                                 double offset_b = 0.0) {
+/// Pinion (body 0) driving wheel A (body 1) through "mesh-a" and wheel B (body 2) through
+/// "mesh-b"; the bearings' y stiffness is `bearing_y_factor` × the others'.
+inline SystemBuilder TwoMeshBuilder(const MeshCore& core_a, const MeshCore& core_b,
+                                    double offset_b = 0.0, double bearing_y_factor = 1.0) {
   const HandPairParams p;
   SystemBuilder builder;
   const BodyIndex pinion = builder.AddBody("pinion", DiagMass(p.m1, p.Id1, p.I1));
@@ -44,14 +45,20 @@ inline SystemModel TwoMeshSystem(const MeshCore& core_a, const MeshCore& core_b,
   const BodyIndex b =
       builder.AddBody("wheel-b", DiagMass(0.7 * p.m2, p.Id2, 0.8 * p.I2), Vector3(-0.13, 0, 0));
   Vector6 kb;
-  kb << p.bearing, p.bearing, p.bearing, 0.01 * p.bearing, 0.01 * p.bearing, 0.0;
+  kb << p.bearing, bearing_y_factor * p.bearing, p.bearing, 0.01 * p.bearing, 0.01 * p.bearing, 0.0;
   for (const BodyIndex body : {pinion, a, b}) {
     builder.AddElement("bearing" + std::to_string(body.value()), ElementKind::kBearing, {body},
                        MatrixX(kb.asDiagonal()));
   }
   builder.AddMesh("mesh-a", pinion, a, HandPairJacobian(p), core_a);
   builder.AddMesh("mesh-b", pinion, b, HandPairJacobian(p), core_b, std::nullopt, 1.0, offset_b);
-  return builder.Build();
+  return builder;
+}
+
+/// TwoMeshBuilder(…).Build().
+inline SystemModel TwoMeshSystem(const MeshCore& core_a, const MeshCore& core_b,
+                                 double offset_b = 0.0) {
+  return TwoMeshBuilder(core_a, core_b, offset_b).Build();
 }
 
 }  // namespace geardyn::test
