@@ -8,6 +8,7 @@
 #include <numbers>
 #include <utility>
 
+#include "geardyn/common/check.hpp"
 #include "nonlinear_hb/solver_impl.hpp"
 
 namespace geardyn {
@@ -20,7 +21,15 @@ NhbSolver::Impl::Impl(NhbProblem problem_in, const NhbOptions& options_in, int h
   dofs = static_cast<int>(problem.mass.rows());
   H = harmonics;
   p = options.period_multiple;
-  S = NhbSolver::SamplesFor(options, H);
+  {
+    const bool has_form = problem.law->PiecewiseLinearForm(&form);
+    exact = options.force_integration == NhbForceIntegration::kExact ||
+            (options.force_integration == NhbForceIntegration::kAuto && has_form);
+    GEARDYN_THROW_UNLESS(!exact || has_form,
+                         "force_integration: exact integration needs a law with a "
+                         "piecewise-linear form (NhbNonlinearLaw::PiecewiseLinearForm)");
+  }
+  S = NhbSolver::SamplesFor(options, H, exact);
   m = n * (2 * H + 1);
 
   time_buf = fftw_alloc_real(static_cast<size_t>(S));
@@ -36,6 +45,11 @@ NhbSolver::Impl::Impl(NhbProblem problem_in, const NhbOptions& options_in, int h
   dg.resize(n * n, S);
   g_h.resize(n, H + 1);
   dg_h.assign(2 * H + 1, MatrixXc::Zero(n, n));
+  jacobian_coefficients.resize((4 * H + 1) * n * n);
+  uncondensed = problem.IsUncondensed();
+  mass_c = problem.mass.cast<std::complex<double>>();
+  damping_c = problem.damping.cast<std::complex<double>>();
+  stiffness_c = problem.stiffness.cast<std::complex<double>>();
   Z.assign(H + 1, MatrixXc::Zero(n, n));
   dZ = Z;
   F.assign(H + 1, VectorXc::Zero(n));
@@ -46,6 +60,30 @@ NhbSolver::Impl::Impl(NhbProblem problem_in, const NhbOptions& options_in, int h
     MatrixX probe_u = MatrixX::Zero(n, 1), probe_v(n, 1);
     const VectorX probe_phase = VectorX::Zero(1);
     has_switch_function = problem.law->SwitchFunction(probe_u, probe_phase, probe_v);
+  }
+  if (exact) {
+    const size_t count = static_cast<size_t>(n);
+    GEARDYN_THROW_UNLESS(
+        form.modulation.rows() == n && form.modulation.cols() >= 1 && form.slope.size() == n &&
+            form.offset.size() == n && form.ramp_points.size() == count &&
+            form.ramp_slopes.size() == count,
+        "law: piecewise-linear form sizes do not match its " << n << " coordinates");
+    for (size_t i = 0; i < count; ++i) {
+      GEARDYN_THROW_UNLESS(
+          form.ramp_points[i].size() == form.ramp_slopes[i].size(),
+          "law: piecewise-linear form of coordinate " << i << " has unpaired ramps");
+    }
+    kappa_order = p * static_cast<int>(form.modulation.cols() - 1);
+    const int P = kappa_order;
+    u_slope.resize(n, S);
+    u_full.resize(2 * H + 1);
+    kappa.resize(2 * P + 1);
+    ramp_product.resize(2 * (H + P) + 1);
+    set_integrals.resize(2 * (2 * H + P) + 1);
+    q_re.resize(ramp_product.size());
+    q_im.resize(ramp_product.size());
+    integrals_re.resize(set_integrals.size());
+    integrals_im.resize(set_integrals.size());
   }
   J.resize(m, m);
   R.resize(m);
@@ -99,8 +137,9 @@ void NhbSolver::Impl::AnalyseJacobian() {
   }
 }
 
-int NhbSolver::SamplesFor(const NhbOptions& options, int harmonics) {
-  const int S = std::max(64, options.samples_per_harmonic * harmonics);
+int NhbSolver::SamplesFor(const NhbOptions& options, int harmonics, bool exact) {
+  // Exact integration samples only to bracket the switches and extrema (Hermite bound).
+  const int S = std::max(64, (exact ? 4 : options.samples_per_harmonic) * harmonics);
   return S + S % 2;
 }
 

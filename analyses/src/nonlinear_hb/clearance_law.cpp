@@ -1,6 +1,7 @@
 /// @file
 /// @brief NhbClearanceLaw and the B&K (1995) oscillator problem.
 #include <cmath>
+#include <complex>
 #include <utility>
 
 #include "geardyn/analyses/nonlinear_hb_clearance.hpp"
@@ -70,6 +71,31 @@ bool NhbClearanceLaw::SwitchFunction(const MatrixX& u, const VectorX& phase, Mat
       const double front = u(i, s) - front_gap_[i];
       value(i, s) = std::isfinite(back_gap_[i]) ? front * (u(i, s) + back_gap_[i]) : front;
     }
+  }
+  return true;
+}
+
+bool NhbClearanceLaw::PiecewiseLinearForm(NhbPiecewiseLinearForm* form) const {
+  const Eigen::Index n = stiffness_.size();
+  form->modulation.resize(n, 2);
+  form->slope.resize(n);
+  form->offset.resize(n);
+  form->ramp_points.assign(static_cast<size_t>(n), {});
+  form->ramp_slopes.assign(static_cast<size_t>(n), {});
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const size_t ii = static_cast<size_t>(i);
+    // k(1 + α cos(φ + ψ)) = k + (kα/2) e^{iψ} e^{iφ} + c.c.
+    form->modulation(i, 0) = stiffness_[i];
+    form->modulation(i, 1) = std::polar(0.5 * stiffness_[i] * modulation_[i], modulation_phase_[i]);
+    const bool back = std::isfinite(back_gap_[i]);
+    form->slope[i] = back ? 1.0 : 0.0;
+    form->offset[i] = back ? back_gap_[i] : 0.0;
+    if (back) {
+      form->ramp_points[ii].push_back(-back_gap_[i]);
+      form->ramp_slopes[ii].push_back(-1.0);
+    }
+    form->ramp_points[ii].push_back(front_gap_[i]);
+    form->ramp_slopes[ii].push_back(1.0);
   }
   return true;
 }

@@ -1,14 +1,28 @@
 /// @file
-/// @brief Pseudo-arclength continuation of the nonlinear HB in Ω (Keller): predictor along the
-/// unit tangent t̂ in scaled variables (x/x_scale, Ω/omega_scale), corrector Newton on
-/// [R(x, Ω); t̂ᵀ(ŷ − ŷ_pred)] = 0 with the bordered Jacobian [J R_Ω; t̂_x/x_scale t̂_Ω/Ω_scale];
-/// the new tangent solves the same bordered matrix with right-hand side [0; 1] (so it keeps
-/// the orientation). Step control: cut by half on corrector failure or a tangent turn above
-/// max_tangent_angle (curvature), ×1.5 after ≤ 2 corrector iterations, ×0.7 after ≥ 5.
+/// @brief Pseudo-arclength continuation of the nonlinear HB in Ω (Keller), in scaled variables
+/// ŷ = (x/x_scale, Ω/omega_scale).
+/// * Predictor: the cubic through the last four points extrapolated in arclength (error
+///   O(ds⁴)); the unit tangent t̂ (O(ds²)) for the first steps, after a rejected step and for
+///   the sampled AFT (see `smooth` below: the chord and refined-tangent items also only apply
+///   to exact integration; the sampled AFT takes a Newton step with a fresh LU every time).
+/// * Corrector: [R(x, Ω); t̂ᵀ(ŷ − ŷ_pred)] = 0 by chord iterations with the bordered matrix
+///   [J R_Ω; t̂_x/x_scale t̂_Ω/Ω_scale] factorised at some earlier point; re-factorised at the
+///   iterate when a correction shrinks by less than kSlowContraction (then it is Newton).
+/// * Tangent of a new point: after a cubic prediction, the derivative at the new point of the
+///   cubic through it and the three points before (O(ds³), no Jacobian); otherwise the
+///   solution of the new bordered matrix with right-hand side [0; 1] (so it keeps the
+///   orientation), by iterative refinement of the previous tangent with the chord LU, or from
+///   a fresh LU (the next chord matrix) when that contracts slowly. Most points cost one or
+///   two residuals, one back-substitution and no Jacobian.
+/// * Step control: cut by half on corrector failure or a tangent turn above max_tangent_angle
+///   (curvature), ×1.5 after ≤ 1 Newton correction (≤ 2 chord corrections), ×0.7 after ≥ 4
+///   (≥ 5).
 #include <Eigen/LU>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "geardyn/analyses/nonlinear_hb.hpp"
 #include "geardyn/common/check.hpp"
@@ -17,6 +31,14 @@
 namespace geardyn {
 namespace {
 
+/// A chord correction larger than this fraction of the previous one re-factorises.
+constexpr double kSlowContraction = 0.25;
+/// Points of the polynomial (cubic) predictor.
+constexpr size_t kPredictorNodes = 4;
+/// Tangent refinement: relative size of the last step, and most refinement steps.
+constexpr double kTangentTolerance = 1e-7;
+constexpr int kTangentRefinements = 5;
+
 NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options,
                             const NhbContinuationOptions& c, int H) {
   NhbCurve curve;
@@ -24,6 +46,11 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   NhbSolver solver(problem, options, H);
   const int n = problem.law->num_coordinates();
   const int m = solver.num_unknowns();
+  // The accelerations (polynomial predictor, chord corrector, refined tangents) need a smooth
+  // residual: exact integration. The sampled AFT residual has kinks (a sample crossing a
+  // contact boundary) that a cubic extrapolation amplifies and a stale Jacobian cannot follow,
+  // so there every corrector iteration is a Newton step from the tangent predictor.
+  const bool smooth = solver.exact_integration();
   (void)n;
   const double direction = c.omega_end > c.omega_start ? 1.0 : -1.0;
   double omega = c.omega_start;
@@ -52,17 +79,42 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
     B(m, m) = t[m] / so;
   };
   // Unit tangent (scaled) from the factorised bordered matrix.
+  auto scaled_unit = [&](const VectorX& v) {
+    VectorX u(m + 1);
+    u.head(m) = v.head(m) / sx;
+    u[m] = v[m] / so;
+    return VectorX(u / u.norm());
+  };
   auto tangent = [&]() {
     rhs.setZero();
     rhs[m] = 1.0;
     z = lu.solve(rhs);
-    VectorX t(m + 1);
-    t.head(m) = z.head(m) / sx;
-    t[m] = z[m] / so;
-    return VectorX(t / t.norm());
+    return scaled_unit(z);
+  };
+  VectorX t = VectorX::Zero(m + 1);
+  // B z = e_{m+1} by iterative refinement from the previous tangent with the (stale) chord LU.
+  // Converged when a refinement step is below kTangentTolerance of z (a residual test would
+  // not do: J is nearly singular along the tangent at a fold); false when the steps contract
+  // slowly (then re-factorise).
+  VectorX tangent_step(m + 1);
+  auto refine_tangent = [&]() {
+    z.head(m) = sx * t.head(m);
+    z[m] = so * t[m];
+    double previous = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < kTangentRefinements; ++k) {
+      rhs.setZero();
+      rhs[m] = 1.0;
+      rhs.noalias() -= B * z;
+      tangent_step = lu.solve(rhs);
+      z += tangent_step;
+      const double step = tangent_step.lpNorm<Eigen::Infinity>();
+      if (!std::isfinite(step) || step > kSlowContraction * previous) return false;
+      if (step <= kTangentTolerance * z.lpNorm<Eigen::Infinity>()) return true;
+      previous = step;
+    }
+    return false;
   };
 
-  VectorX t = VectorX::Zero(m + 1);
   t[m] = direction;
   assemble(x, omega, t);
   lu.compute(B);
@@ -86,41 +138,92 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
 
   double ds = c.initial_step;
   const double tol_scale = options.newton_tolerance;
+  // Scale as NhbSolver::Newton: 1 + max ‖F̃_k‖∞ is not exposed; use 1 + ‖f₀‖∞ + |f₁|∞.
+  const double tol = tol_scale * (1.0 + problem.force_mean.lpNorm<Eigen::Infinity>() +
+                                  problem.force_amplitude.cwiseAbs().maxCoeff());
   VectorX xp(m), xc(m);
+  double op_predicted = 0.0;
   long rejected = 0;
+  long factorisations = 1;
+  // The factorised bordered matrix of the last accepted point (its Jacobian and tangent row)
+  // is the chord matrix of the next corrector; restored after a rejected step.
+  auto factor_at_accepted = [&]() {
+    assemble(x, omega, t);
+    lu.compute(B);
+    ++factorisations;
+  };
+  // Last accepted points (x, Ω) and their scaled arclength positions, for the predictor.
+  std::vector<VectorX> history{VectorX(m + 1)};
+  history[0] << x, omega;
+  std::vector<double> history_s{0.0};
+  bool tangent_predictor = false;  // after a rejected step: the first-order predictor
   while (static_cast<int>(curve.points.size()) < c.max_points) {
-    xp = x + ds * sx * t.head(m);
-    const double op = omega + ds * so * t[m];
+    if (smooth && history.size() == kPredictorNodes && !tangent_predictor) {
+      // Cubic extrapolation in arclength through the last four points (error O(ds⁴) instead
+      // of the tangent's O(ds²): the chord corrector then needs a correction or two).
+      const double target = history_s.back() + ds;
+      VectorX y = VectorX::Zero(m + 1);
+      for (size_t j = 0; j < kPredictorNodes; ++j) {
+        double w = 1.0;
+        for (size_t l = 0; l < kPredictorNodes; ++l) {
+          if (l != j) w *= (target - history_s[l]) / (history_s[j] - history_s[l]);
+        }
+        y += w * history[j];
+      }
+      xp = y.head(m);
+      op_predicted = y[m];
+    } else {
+      xp = x + ds * sx * t.head(m);
+      op_predicted = omega + ds * so * t[m];
+    }
+    const double op = op_predicted;
     xc = xp;
     double oc = op;
     bool converged = false;
     int it = 0;
     double res = 0.0;
+    double previous_correction = 0.0;
+    bool assembled = false;  // B holds the bordered matrix at (xc, oc)
     for (; it <= c.max_corrector_iterations; ++it) {
-      assemble(xc, oc, t);
-      // Scale as NhbSolver::Newton: 1 + max ‖F̃_k‖∞ is not exposed; use 1 + ‖f₀‖∞ + |f₁|∞.
-      const double scale = 1.0 + problem.force_mean.lpNorm<Eigen::Infinity>() +
-                           problem.force_amplitude.cwiseAbs().maxCoeff();
+      if (smooth) {
+        solver.Evaluate(xc, oc, &R, nullptr, nullptr);
+      } else {
+        assemble(xc, oc, t);  // Newton: the Jacobian of every iterate
+      }
+      assembled = !smooth;
       res = R.lpNorm<Eigen::Infinity>();
-      lu.compute(B);
       if (!std::isfinite(res)) break;
-      if (res <= tol_scale * scale) {
+      if (res <= tol) {
         converged = true;
         break;
       }
       if (it == c.max_corrector_iterations) break;
       rhs.head(m) = -R;
       rhs[m] = -(t.head(m).dot(xc - xp) / sx + t[m] * (oc - op) / so);
+      if (!smooth) {
+        lu.compute(B);
+        ++factorisations;
+      }
       z = lu.solve(rhs);
-      if (!z.allFinite()) break;
-      xc += z.head(m);
-      oc += z[m];
-      // Stagnation at the residual floor (a sample sitting on a kink of g): a Newton step
-      // below round-off of the state counts as converged once the residual is small.
-      if (z.lpNorm<Eigen::Infinity>() <= 1e-13 * (1.0 + xc.lpNorm<Eigen::Infinity>()) &&
-          R.lpNorm<Eigen::Infinity>() <= 1e3 * tol_scale * scale) {
+      double correction = z.lpNorm<Eigen::Infinity>();
+      // Chord steps contract slowly once the matrix is stale: re-factorise at the iterate
+      // (a full Newton step), keeping the contraction fast.
+      if (smooth && it > 0 && correction > kSlowContraction * previous_correction) {
         assemble(xc, oc, t);
         lu.compute(B);
+        ++factorisations;
+        z = lu.solve(rhs);
+        correction = z.lpNorm<Eigen::Infinity>();
+      }
+      if (!z.allFinite()) break;
+      previous_correction = correction;
+      xc += z.head(m);
+      oc += z[m];
+      // Stagnation at the residual floor: a correction below round-off of the state counts as
+      // converged once the residual is small.
+      if (correction <= 1e-13 * (1.0 + xc.lpNorm<Eigen::Infinity>()) && res <= 1e3 * tol) {
+        solver.Evaluate(xc, oc, &R, nullptr, nullptr);
+        assembled = false;
         res = R.lpNorm<Eigen::Infinity>();
         converged = true;
         ++it;
@@ -130,8 +233,47 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
     newton += it + 1;
     VectorX t_new;
     bool accept = converged && oc > 0;
+    const bool cubic = smooth && history.size() == kPredictorNodes && !tangent_predictor;
+    if (accept && cubic) {
+      // The derivative at the new point of the cubic through it and the three points before
+      // (O(ds³)): no Jacobian, no solve. Lagrange weights differentiated at the last node.
+      const double s_new = history_s.back() + std::hypot((xc - x).norm() / sx, (oc - omega) / so);
+      std::array<double, kPredictorNodes> nodes{};
+      for (size_t j = 0; j + 1 < kPredictorNodes; ++j) nodes[j] = history_s[j + 1];
+      nodes[kPredictorNodes - 1] = s_new;
+      VectorX derivative = VectorX::Zero(m + 1);
+      for (size_t j = 0; j < kPredictorNodes; ++j) {
+        double w = 0.0;
+        if (j + 1 == kPredictorNodes) {
+          for (size_t l = 0; l + 1 < kPredictorNodes; ++l) w += 1.0 / (s_new - nodes[l]);
+        } else {
+          w = 1.0 / (nodes[j] - s_new);
+          for (size_t l = 0; l + 1 < kPredictorNodes; ++l) {
+            if (l != j) w *= (s_new - nodes[l]) / (nodes[j] - nodes[l]);
+          }
+        }
+        if (j + 1 == kPredictorNodes) {
+          derivative.head(m) += w * xc;
+          derivative[m] += w * oc;
+        } else {
+          derivative += w * history[j + 1];
+        }
+      }
+      t_new = scaled_unit(derivative);
+    } else if (accept) {
+      // The tangent at the new point from its bordered matrix: iterative refinement of the
+      // previous tangent with the chord LU, or a fresh factorisation (the next chord matrix)
+      // when the refinement contracts slowly.
+      if (!assembled) assemble(xc, oc, t);
+      if (!smooth || !refine_tangent()) {
+        lu.compute(B);
+        ++factorisations;
+        t_new = tangent();
+      } else {
+        t_new = scaled_unit(z);
+      }
+    }
     if (accept) {
-      t_new = tangent();
       const double cosang = std::clamp(t_new.dot(t), -1.0, 1.0);
       // The curvature limit is a quality control, not a convergence condition: below
       // 1000·min_step a converged point is kept even at a sharp turn (a kink of the AFT curve).
@@ -139,6 +281,8 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
     }
     if (!accept) {
       ++rejected;
+      tangent_predictor = true;
+      factor_at_accepted();
       ds *= 0.5;
       if (ds < c.min_step) {
         curve.summary.status = Status::kNotConverged;
@@ -147,6 +291,19 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
         break;
       }
       continue;
+    }
+    {
+      // Accepted: shift the predictor history (chord length as the arclength increment).
+      VectorX y(m + 1);
+      y << xc, oc;
+      const double chord = std::hypot((xc - x).norm() / sx, (oc - omega) / so);
+      if (history.size() == kPredictorNodes) {
+        history.erase(history.begin());
+        history_s.erase(history_s.begin());
+      }
+      history_s.push_back(history_s.back() + chord);
+      history.push_back(std::move(y));
+      tangent_predictor = false;
     }
     x = xc;
     omega = oc;
@@ -158,8 +315,10 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
     }
     record(x, omega, it + 1, res);
     steps.push_back(ds);
-    if (it + 1 <= 2) ds = std::min(ds * 1.5, c.max_step);
-    if (it + 1 >= 5) ds = std::max(ds * 0.7, c.min_step);
+    // Chord iterations (smooth residual) contract linearly: one more correction is normal.
+    const int extra = smooth ? 1 : 0;
+    if (it <= 1 + extra) ds = std::min(ds * 1.5, c.max_step);
+    if (it >= 4 + extra) ds = std::max(ds * 0.7, c.min_step);
   }
   if (static_cast<int>(curve.points.size()) >= c.max_points) {
     curve.summary.warnings.push_back("max_points reached before omega_end");
@@ -171,6 +330,7 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   curve.summary.counters["points"] = static_cast<long>(curve.points.size());
   curve.summary.counters["newton_iterations"] = newton;
   curve.summary.counters["rejected_steps"] = rejected;
+  curve.summary.counters["factorisations"] = factorisations;
   curve.summary.counters["folds"] = static_cast<long>(curve.folds.size());
   curve.summary.counters["harmonics"] = H;
   return curve;

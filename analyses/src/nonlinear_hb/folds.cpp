@@ -16,6 +16,9 @@ namespace {
 
 double Lerp(double a, double b, double w) { return a + w * (b - a); }
 
+/// Points on each side of a fold searched for a stable one.
+constexpr int kFlickerPoints = 8;
+
 }  // namespace
 
 void FindFoldsAndJumps(NhbCurve& curve, const std::vector<double>& steps, double omega_scale) {
@@ -69,10 +72,20 @@ void FindFoldsAndJumps(NhbCurve& curve, const std::vector<double>& steps, double
     // Both branches meeting at the fold lie on the same side in Ω, the side a sweep comes
     // from; the sweep arrives on the stable one (a fold between two unstable branches is not
     // a jump of a slow sweep).
-    // Near a fold |μ| ≈ 1 and the flag may flicker: look at the points 2 steps away.
-    const NhbPoint& a = pts[std::max(fold.index - 2, 0)];
-    const NhbPoint& b = pts[std::min<size_t>(fold.index + 3, pts.size() - 1)];
-    if (!a.stable && !b.stable) continue;
+    // Near a fold |μ| ≈ 1 and the flag may flicker (the monodromy error is not zero): a side
+    // is stable when one of its points 2 to kFlickerPoints steps away from the fold is.
+    auto side_stable = [&](int from, int direction) {
+      const int side_branch = pts[static_cast<size_t>(from)].branch;
+      for (int k = 2; k <= kFlickerPoints; ++k) {
+        const int i = from + direction * k;
+        if (i < 0 || i >= static_cast<int>(pts.size())) break;
+        if (pts[static_cast<size_t>(i)].branch != side_branch) break;
+        if (pts[static_cast<size_t>(i)].stable) return true;
+      }
+      return false;
+    };
+    const int after = std::min(fold.index + 1, static_cast<int>(pts.size()) - 1);
+    if (!side_stable(fold.index, -1) && !side_stable(after, 1)) continue;
     NhbJump jump;
     jump.up_sweep = fold.omega_maximum;
     jump.omega = fold.omega;

@@ -14,24 +14,23 @@ void NhbSolver::Impl::UpdateLinear(double omega) {
   cached_omega = omega;
   const double w = omega / p;
   const std::complex<double> I(0.0, 1.0);
-  const bool direct = problem.IsUncondensed();
   double fmax = 0.0;
   for (int k = 0; k <= H; ++k) {
     const double kk = k;
-    MatrixXc D = (-kk * kk * w * w) * problem.mass.cast<std::complex<double>>() +
-                 (I * kk * w) * problem.damping.cast<std::complex<double>>() +
-                 problem.stiffness.cast<std::complex<double>>();
-    MatrixXc dD = ((-2.0 * kk * kk * w / p) * problem.mass.cast<std::complex<double>>() +
-                   (I * kk / double(p)) * problem.damping.cast<std::complex<double>>());
-    VectorXc Fk = VectorXc::Zero(dofs);
-    if (k == 0) Fk = problem.force_mean.cast<std::complex<double>>();
-    if (k == p) Fk = 0.5 * problem.force_amplitude;
-    if (direct) {
-      Z[k] = D;
-      dZ[k] = dD;
-      F[k] = Fk;
+    if (uncondensed) {
+      // Z_k = D_k, written in place (no temporaries: this runs at every new Ω).
+      Z[k] = (-kk * kk * w * w) * mass_c + (I * kk * w) * damping_c + stiffness_c;
+      dZ[k] = (-2.0 * kk * kk * w / p) * mass_c + (I * kk / double(p)) * damping_c;
+      F[k].setZero();
+      if (k == 0) F[k] = problem.force_mean.cast<std::complex<double>>();
+      if (k == p) F[k] = 0.5 * problem.force_amplitude;
       dF[k].setZero();
     } else {
+      const MatrixXc D = (-kk * kk * w * w) * mass_c + (I * kk * w) * damping_c + stiffness_c;
+      const MatrixXc dD = (-2.0 * kk * kk * w / p) * mass_c + (I * kk / double(p)) * damping_c;
+      VectorXc Fk = VectorXc::Zero(dofs);
+      if (k == 0) Fk = problem.force_mean.cast<std::complex<double>>();
+      if (k == p) Fk = 0.5 * problem.force_amplitude;
       const MatrixXc Pc = problem.projection.cast<std::complex<double>>();
       Eigen::PartialPivLU<MatrixXc> dlu(D);
       const MatrixXc Y = dlu.solve(Pc.transpose());  // D⁻¹ Pᵀ, N×n

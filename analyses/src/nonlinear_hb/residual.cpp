@@ -1,7 +1,7 @@
 /// @file
 /// @brief NhbSolver: harmonic residual R_k = Z_k U_k + N_k − F̃_k, its analytic Jacobian
-/// (Toeplitz blocks ∂N_k/∂U_m = G_{k−m}), Newton with backtracking, the contact-branch initial
-/// guess and the description of a solution (RMS, peak-to-peak, error estimate).
+/// (Toeplitz blocks ∂N_k/∂U_m = G_{k−m}), the contact-branch initial guess and the description
+/// of a solution (RMS, peak-to-peak, error estimate).
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -14,10 +14,7 @@ void NhbSolver::Impl::Evaluate(const VectorX& x, double omega, VectorX* residual
                                VectorX* d_omega) {
   using C = std::complex<double>;
   UpdateLinear(omega);
-  Synthesize(x);
-  problem.law->Evaluate(u, phase, g, dg);
-  AnalyseForce();
-  if (options.switch_correction) CorrectForceAtSwitches(x);
+  ForceHarmonics(x, jacobian != nullptr);
   // Complex harmonic U_k of coordinate i from x.
   auto U = [&](int k, int i) { return k == 0 ? C(x[i], 0.0) : C(x[Re(k, i)], x[Im(k, i)]); };
   auto store = [&](VectorX& out, int k, int a, C r) {
@@ -43,27 +40,38 @@ void NhbSolver::Impl::Evaluate(const VectorX& x, double omega, VectorX* residual
     }
   }
   if (!jacobian) return;
-  AnalyseJacobian();
   MatrixX& Jm = *jacobian;
-  const C I(0.0, 1.0);
-  // G_j(a, b) for any integer j (G_{−j} = conj(G_j)); no temporaries in the O(H²n²) loop.
-  auto G = [&](int j, int a, int b) { return j >= 0 ? dg_h[j](a, b) : std::conj(dg_h[-j](a, b)); };
-  for (int k = 0; k <= H; ++k) {
-    for (int mm = 0; mm <= H; ++mm) {
-      for (int a = 0; a < n; ++a) {
-        for (int b = 0; b < n; ++b) {
-          // ∂N_k/∂(Re U_m) and ∂N_k/∂(Im U_m), from δU_{±m}: U_m = α + iβ, U_{−m} = α − iβ.
+  // G_j(a, b) for j = −2H..2H (G_{−j} = conj(G_j)) in one flat buffer: no branches in the
+  // O(H²n²) loop below.
+  const int nn = n * n;
+  for (int j = 0; j <= 2 * H; ++j) {
+    for (int e = 0; e < nn; ++e) {
+      const C value = dg_h[j](e % n, e / n);
+      jacobian_coefficients[(2 * H + j) * nn + e] = value;
+      jacobian_coefficients[(2 * H - j) * nn + e] = std::conj(value);
+    }
+  }
+  auto G = [&](int j, int e) { return jacobian_coefficients[(2 * H + j) * nn + e]; };
+  for (int mm = 0; mm <= H; ++mm) {
+    for (int k = 0; k <= H; ++k) {
+      for (int b = 0; b < n; ++b) {
+        for (int a = 0; a < n; ++a) {
+          const int e = a + n * b;
+          // ∂N_k/∂(Re U_m) and ∂N_k/∂(Im U_m), from δU_{±m}: U_m = α + iβ, U_{−m} = α − iβ:
+          // dA = G_{k−m} + G_{k+m}, dB = i (G_{k−m} − G_{k+m}) (m = 0: dA = G_k).
           C dA, dB;
           if (mm == 0) {
-            dA = G(k, a, b);
+            dA = G(k, e);
           } else {
-            const C minus = G(k - mm, a, b), plus = G(k + mm, a, b);
+            const C minus = G(k - mm, e), plus = G(k + mm, e);
             dA = minus + plus;
-            dB = I * (minus - plus);
+            const C diff = minus - plus;
+            dB = C(-diff.imag(), diff.real());
           }
           if (k == mm) {
-            dA += Z[k](a, b);
-            if (k > 0) dB += I * Z[k](a, b);
+            const C z = Z[k](a, b);
+            dA += z;
+            if (k > 0) dB += C(-z.imag(), z.real());
           }
           Jm(Re(k, a), Re(mm, b)) = dA.real();
           if (k > 0) Jm(Im(k, a), Re(mm, b)) = dA.imag();
@@ -75,6 +83,18 @@ void NhbSolver::Impl::Evaluate(const VectorX& x, double omega, VectorX* residual
       }
     }
   }
+}
+
+void NhbSolver::Impl::ForceHarmonics(const VectorX& x, bool jacobian) {
+  Synthesize(x);
+  if (exact) {
+    IntegrateExactly(x);
+    return;
+  }
+  problem.law->Evaluate(u, phase, g, dg);
+  AnalyseForce();
+  if (options.switch_correction) CorrectForceAtSwitches(x);
+  if (jacobian) AnalyseJacobian();
 }
 
 NhbSolver::NhbSolver(NhbProblem problem, const NhbOptions& options, int harmonics) {
@@ -91,6 +111,7 @@ NhbSolver& NhbSolver::operator=(NhbSolver&&) noexcept = default;
 int NhbSolver::harmonics() const { return impl_->H; }
 int NhbSolver::samples() const { return impl_->S; }
 int NhbSolver::num_unknowns() const { return impl_->m; }
+bool NhbSolver::exact_integration() const { return impl_->exact; }
 const NhbProblem& NhbSolver::problem() const { return impl_->problem; }
 
 void NhbSolver::Evaluate(const VectorX& x, double omega, VectorX* residual, MatrixX* jacobian,
@@ -121,51 +142,6 @@ VectorX NhbSolver::ContactGuess(double omega) {
   return x;
 }
 
-int NhbSolver::Newton(VectorX& x, double omega, Status* status, double* residual_norm) {
-  Impl& s = *impl_;
-  GEARDYN_CHECK_SIZE(x.size(), s.m, "x");
-  s.UpdateLinear(omega);
-  const double tol = s.options.newton_tolerance * s.force_scale;
-  int it = 0;
-  double rn = 0.0;
-  *status = Status::kNotConverged;
-  for (; it <= s.options.max_newton_iterations; ++it) {
-    s.Evaluate(x, omega, &s.R, &s.J, nullptr);
-    rn = s.R.lpNorm<Eigen::Infinity>();
-    if (!std::isfinite(rn)) {
-      *status = Status::kNumericalIssue;
-      break;
-    }
-    if (rn <= tol) {
-      *status = Status::kSuccess;
-      break;
-    }
-    if (it == s.options.max_newton_iterations) break;
-    s.lu.compute(s.J);
-    s.dx = s.lu.solve(-s.R);
-    if (!s.dx.allFinite()) {
-      *status = Status::kNumericalIssue;
-      break;
-    }
-    // Backtracking on ‖R‖∞ (Armijo-like, 10 halvings at most).
-    double lambda = 1.0;
-    bool accepted = false;
-    for (int ls = 0; ls < 10; ++ls) {
-      s.x_trial = x + lambda * s.dx;
-      s.Evaluate(s.x_trial, omega, &s.R_trial, nullptr, nullptr);
-      if (s.R_trial.lpNorm<Eigen::Infinity>() < (1.0 - 1e-4 * lambda) * rn) {
-        accepted = true;
-        break;
-      }
-      lambda *= 0.5;
-    }
-    x = s.x_trial;  // the smallest trial step when none was accepted (escape a kink)
-    (void)accepted;
-  }
-  if (residual_norm) *residual_norm = rn;
-  return it;
-}
-
 void NhbSolver::Describe(const VectorX& x, double omega, NhbPoint& point) {
   Impl& s = *impl_;
   GEARDYN_CHECK_SIZE(x.size(), s.m, "x");
@@ -190,8 +166,12 @@ void NhbSolver::Describe(const VectorX& x, double omega, NhbPoint& point) {
     point.rms[i] = std::sqrt(e);
     total += e;
   }
-  point.maximum = s.u.rowwise().maxCoeff();
-  point.minimum = s.u.rowwise().minCoeff();
+  point.maximum.resize(s.n);
+  point.minimum.resize(s.n);
+  for (int i = 0; i < s.n; ++i) {
+    point.maximum[i] = s.ExtremeValue(x, i, 1.0);
+    point.minimum[i] = s.ExtremeValue(x, i, -1.0);
+  }
   point.peak_to_peak = point.maximum - point.minimum;
   point.error_estimate = total > 0 ? std::sqrt(top / total) : 0.0;
 }

@@ -6,6 +6,7 @@
 #include <fftw3.h>
 
 #include <Eigen/LU>
+#include <utility>
 #include <vector>
 
 #include "geardyn/analyses/nonlinear_hb.hpp"
@@ -34,22 +35,39 @@ struct NhbSolver::Impl {
   fftw_plan c2r = nullptr;
 
   // AFT scratch.
-  VectorX phase;               ///< Ω t_s = p·2πs/S.
-  MatrixX u;                   ///< n×S.
-  MatrixX g;                   ///< n×S.
-  MatrixX dg;                  ///< n²×S.
-  MatrixXc g_h;                ///< n×(H+1): N_k.
-  std::vector<MatrixXc> dg_h;  ///< 2H+1 blocks n×n: G_j, j = 0..2H.
+  VectorX phase;                   ///< Ω t_s = p·2πs/S.
+  MatrixX u;                       ///< n×S.
+  MatrixX g;                       ///< n×S.
+  MatrixX dg;                      ///< n²×S.
+  MatrixXc g_h;                    ///< n×(H+1): N_k.
+  std::vector<MatrixXc> dg_h;      ///< 2H+1 blocks n×n: G_j, j = 0..2H.
+  VectorXc jacobian_coefficients;  ///< G_j, j = −2H..2H, flat: index (j + 2H)n² + a + nb.
+
+  // Exact integration of a piecewise-linear law (exact_integration.cpp).
+  bool exact = false;           ///< Force harmonics integrated exactly (options + law).
+  NhbPiecewiseLinearForm form;  ///< The law's form when exact.
+  int kappa_order = 0;          ///< P: highest θ-harmonic of the modulation κ̃(θ) = κ(pθ).
+  MatrixX u_slope;              ///< n×S: du/dθ at the samples.
+  VectorXc u_full;              ///< U_l, l = −H..H (index l + H).
+  VectorXc kappa;               ///< κ̃_j, j = −P..P (index j + P).
+  VectorXc ramp_product;        ///< q_m = κ̃(u − β), m = −(H+P)..H+P.
+  VectorX q_re, q_im;           ///< Real and imaginary q_m, reversed.
+  VectorX integrals_re, integrals_im;              ///< Real and imaginary I_j.
+  VectorXc set_integrals;                          ///< I_j, j = −(2H+P)..2H+P (index j + 2H + P).
+  std::vector<std::pair<double, bool>> crossings;  ///< (θ, entering the set u > β).
+  std::vector<std::pair<double, double>> intervals;  ///< Ends of {u > β}, second > first.
 
   // Condensed linear part, cached per Ω.
   double cached_omega;
-  std::vector<MatrixXc> Z, dZ;  ///< k = 0..H.
-  std::vector<VectorXc> F, dF;  ///< k = 0..H.
+  bool uncondensed = false;                 ///< P = I: Z_k = D_k directly.
+  MatrixXc mass_c, damping_c, stiffness_c;  ///< M, C, K as complex (made once).
+  std::vector<MatrixXc> Z, dZ;              ///< k = 0..H.
+  std::vector<VectorXc> F, dF;              ///< k = 0..H.
   double force_scale = 1.0;  ///< 1 + max ‖F̃_k‖∞ + ‖f₀‖∞ (Newton tolerance scale).
 
   // Newton scratch.
   MatrixX J;
-  VectorX R, dx, x_trial, R_trial;
+  VectorX R, dx, x_trial, R_trial, x_start;
   Eigen::PartialPivLU<MatrixX> lu;
 
   // Contact switches (switches.cpp).
@@ -63,6 +81,17 @@ struct NhbSolver::Impl {
   int Im(int k, int i) const { return n * 2 * k + i; }
 
   void UpdateLinear(double omega);
+  /// g_h (and dg_h when `jacobian`) from x: sampled AFT or exact integration per `exact`.
+  void ForceHarmonics(const VectorX& x, bool jacobian);
+  /// Exact g_h and dg_h of the piecewise-linear form (needs Synthesize(x) first).
+  void IntegrateExactly(const VectorX& x);
+  /// u_i(θ), du_i/dθ, d²u_i/dθ² of coordinate i at base angle θ from x.
+  void EvaluateCoordinate(const VectorX& x, int i, double theta, double out[3]) const;
+  /// The set {θ ∈ [0, 2π) : u_i(θ) > level} as `intervals` (needs u and u_slope at the samples).
+  void FindSuperlevelSet(const VectorX& x, int i, double level);
+  /// Largest (sign = +1) or smallest (−1) value of u_i over the period: the extreme sample
+  /// refined to the stationary point of the trigonometric polynomial (needs Synthesize(x)).
+  double ExtremeValue(const VectorX& x, int i, double sign);
   void Synthesize(const VectorX& x);
   void AnalyseForce();
   void AnalyseJacobian();
@@ -78,6 +107,9 @@ struct NhbSolver::Impl {
   double LocateSwitch(const VectorX& x, int i, double a, double fa, double b, double fb);
   /// Adds the Euler–Maclaurin kink terms to g_h (nonlinear_hb.hpp "AFT"); needs u, dg, g_h.
   void CorrectForceAtSwitches(const VectorX& x);
+  /// Powell's hybrid method (GSL hybridsj) from x, overwritten with its last iterate; at most
+  /// options.max_newton_iterations iterations (returned), final ‖R‖∞ in residual_norm.
+  int PowellHybrid(VectorX& x, double omega, double tol, double* residual_norm);
   double MonodromyMaxMultiplier(const VectorX& x, double omega);
   double HillMaxMultiplier(const VectorX& x, double omega);
 };

@@ -151,9 +151,7 @@ double NhbSolver::Impl::MonodromyMaxMultiplier(const VectorX& x, double omega) {
 double NhbSolver::Impl::HillMaxMultiplier(const VectorX& x, double omega) {
   // Only for uncondensed problems (P = I): the condensed Z_k(λ) is not a polynomial in λ.
   if (!problem.IsUncondensed()) return MonodromyMaxMultiplier(x, omega);
-  Synthesize(x);
-  problem.law->Evaluate(u, phase, g, dg);
-  AnalyseJacobian();
+  ForceHarmonics(x, true);
   const double w = omega / p;
   const int N = n;
   const int B = 2 * H + 1;

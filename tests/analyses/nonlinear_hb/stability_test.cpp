@@ -3,7 +3,8 @@
 /// between the folds is unstable and the outer branches stable (monodromy), Hill's method
 /// agrees, and the time integration (GSL rk8pd, independent of the HB) started on an unstable
 /// orbit leaves it for a stable branch while one started on a stable orbit stays.
-/// Also: the analytic Jacobian and ∂R/∂Ω against central finite differences.
+/// Also: the analytic Jacobian and ∂R/∂Ω against central finite differences (exact and sampled
+/// force integration).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -135,32 +136,37 @@ TEST(NonlinearHbJacobian, MatchesCentralDifferences) {
   ClearanceOscillatorParameters p = SetA();
   p.alternating_force = 0.3;  // deep contact loss and back contact in the test state
   const int H = 6;
-  NhbOptions options;
-  NhbSolver solver(MakeClearanceOscillator(p), options, H);
-  VectorX x = VectorX::Zero(2 * H + 1);
-  x[0] = 0.6;
-  x[1] = 0.7;
-  x[2] = -0.4;
-  x[3] = 0.1;
-  x[6] = 0.05;
-  const double w = 0.8;
-  VectorX R, dR;
-  MatrixX J;
-  solver.Evaluate(x, w, &R, &J, &dR);
-  const double h = 1e-7;
-  for (int j = 0; j < x.size(); ++j) {
-    VectorX xp = x, xm = x, Rp, Rm;
-    xp[j] += h;
-    xm[j] -= h;
-    solver.Evaluate(xp, w, &Rp, nullptr, nullptr);
-    solver.Evaluate(xm, w, &Rm, nullptr, nullptr);
-    const VectorX fd = (Rp - Rm) / (2 * h);
-    EXPECT_LT((fd - J.col(j)).lpNorm<Eigen::Infinity>(), 1e-6) << "column " << j;
+  for (const NhbForceIntegration integration :
+       {NhbForceIntegration::kExact, NhbForceIntegration::kSampled}) {
+    SCOPED_TRACE(integration == NhbForceIntegration::kExact ? "exact" : "sampled");
+    NhbOptions options;
+    options.force_integration = integration;
+    NhbSolver solver(MakeClearanceOscillator(p), options, H);
+    VectorX x = VectorX::Zero(2 * H + 1);
+    x[0] = 0.6;
+    x[1] = 0.7;
+    x[2] = -0.4;
+    x[3] = 0.1;
+    x[6] = 0.05;
+    const double w = 0.8;
+    VectorX R, dR;
+    MatrixX J;
+    solver.Evaluate(x, w, &R, &J, &dR);
+    const double h = 1e-7;
+    for (int j = 0; j < x.size(); ++j) {
+      VectorX xp = x, xm = x, Rp, Rm;
+      xp[j] += h;
+      xm[j] -= h;
+      solver.Evaluate(xp, w, &Rp, nullptr, nullptr);
+      solver.Evaluate(xm, w, &Rm, nullptr, nullptr);
+      const VectorX fd = (Rp - Rm) / (2 * h);
+      EXPECT_LT((fd - J.col(j)).lpNorm<Eigen::Infinity>(), 1e-6) << "column " << j;
+    }
+    VectorX Rp, Rm;
+    solver.Evaluate(x, w + h, &Rp, nullptr, nullptr);
+    solver.Evaluate(x, w - h, &Rm, nullptr, nullptr);
+    EXPECT_LT(((Rp - Rm) / (2 * h) - dR).lpNorm<Eigen::Infinity>(), 1e-6);
   }
-  VectorX Rp, Rm;
-  solver.Evaluate(x, w + h, &Rp, nullptr, nullptr);
-  solver.Evaluate(x, w - h, &Rm, nullptr, nullptr);
-  EXPECT_LT(((Rp - Rm) / (2 * h) - dR).lpNorm<Eigen::Infinity>(), 1e-6);
 }
 
 }  // namespace

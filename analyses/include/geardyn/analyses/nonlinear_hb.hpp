@@ -39,6 +39,22 @@
 /// ∂g/∂u across the kink (sample difference), is added to N_k. The Jacobian stays the Toeplitz
 /// one (the correction's derivative is O(h) relative: Newton converges linearly but fast).
 ///
+/// ## Exact integration of piecewise-linear laws (NhbOptions::force_integration)
+/// A law that gives its NhbPiecewiseLinearForm, g_i = κ_i(φ) c_i(u_i) with κ_i a trigonometric
+/// polynomial and c_i piecewise linear (continuous), has N_k and the Jacobian coefficients G_j
+/// computed exactly instead of from samples (the approach of Blankenship & Kahraman 1995, who
+/// solved for the contact switching times). c_i = s u + c₀ + Σ_l Δs_l [u − β_l]₊; on the set
+/// A_l = {θ : u(θ) > β_l} (its ends are the roots of the trigonometric polynomial u − β_l,
+/// bracketed on the S samples of u and u′, with the pairs inside one sample interval found at
+/// the located extrema, and refined by safeguarded Newton to round-off):
+///   N_k = Σ_j κ̃_j (s U_{k−j} + c₀ δ_{k−j}) + Σ_l Δs_l Σ_m q_{l,m} I_{l,k−m},
+///   q_l(θ) = κ̃(θ)(u(θ) − β_l) (coefficients q_{l,m}, |m| ≤ H + pJ),
+///   I_{l,j} = (1/2π) ∫_{A_l} e^{−ijθ} dθ (closed form per interval),
+///   G_d = s κ̃_d + Σ_l Δs_l Σ_j κ̃_j I_{l,d−j},
+/// κ̃(θ) = κ(pθ). The ramp vanishes at the ends of A_l, so the moving ends add nothing to the
+/// derivative: G_d is the exact Jacobian and Newton converges quadratically (away from grazing,
+/// where the residual is only C¹). No aliasing: the error is the truncation at H alone.
+///
 /// ## Stability
 /// Floquet multipliers μ of the periodic orbit (period T = 2π/ω) from the monodromy matrix of
 /// the variational equation y' = A(t) y, A = [0 I; −M⁻¹(K + Pᵀ ∂g/∂u(t) P)  −M⁻¹C] on the full
@@ -63,6 +79,17 @@
 #include "geardyn/common/summary.hpp"
 
 namespace geardyn {
+
+/// @brief Exact form of a piecewise-linear law (see "Exact integration"): for each coordinate
+/// i, g_i(u, φ) = κ_i(φ) c_i(u_i) with κ_i(φ) = Σ_{j=−J..J} κ_ij e^{ijφ} (κ_{i,−j} =
+/// conj(κ_ij)) and c_i(u) = slope_i u + offset_i + Σ_l ramp_slope_il [u − ramp_point_il]₊.
+struct NhbPiecewiseLinearForm {
+  MatrixXc modulation;                           ///< n×(J+1): κ_ij, j = 0..J [force/u units].
+  VectorX slope;                                 ///< n: s_i [-].
+  VectorX offset;                                ///< n: c₀_i [u units].
+  std::vector<std::vector<double>> ramp_points;  ///< Per coordinate: β_il [u units].
+  std::vector<std::vector<double>> ramp_slopes;  ///< Per coordinate: Δs_il [-].
+};
 
 /// @brief Batched nonlinear force on the nonlinear coordinates: force g(u, φ) and ∂g/∂u at S
 /// samples in one call (one virtual call per state evaluation, never per sample).
@@ -89,6 +116,12 @@ class NhbNonlinearLaw {
     (void)value;
     return false;
   }
+  /// Optional exact piecewise-linear form (NhbPiecewiseLinearForm; must describe the same g as
+  /// Evaluate). @return false (default): not provided; the engine then samples g (AFT).
+  virtual bool PiecewiseLinearForm(NhbPiecewiseLinearForm* form) const {
+    (void)form;
+    return false;
+  }
 };
 
 /// @brief M q̈ + C q̇ + K q + Pᵀ g(P q, Ωt) = f₀ + Re(f₁ e^{iΩt}); N DOFs, n nonlinear coords.
@@ -108,15 +141,23 @@ struct NhbProblem {
 
 enum class NhbStabilityMethod { kNone, kMonodromy, kHill };
 
+/// How the Fourier coefficients of g(u(t), Ωt) are computed.
+enum class NhbForceIntegration {
+  kAuto,     ///< kExact when the law gives its NhbPiecewiseLinearForm, else kSampled.
+  kSampled,  ///< AFT on S samples (optionally with the switch correction).
+  kExact,    ///< Exact integration of the piecewise-linear form (the law must give it).
+};
+
 /// @brief Options of the single-frequency solve (also used by the continuation).
 struct NhbOptions {
   int harmonics = 0;                 ///< H ≥ 1; 0: chosen from harmonic_tolerance.
   double harmonic_tolerance = 1e-6;  ///< H→2H relative RMS change target when harmonics = 0.
   int max_harmonics = 256;           ///< Upper bound of the automatic H.
   int period_multiple = 1;           ///< p ∈ {1, 2, …}: base ω = Ω/p (2: period-2 solutions).
-  int samples_per_harmonic = 16;     ///< AFT oversampling: S = max(64, this·H), even.
-  double newton_tolerance = 1e-10;   ///< ‖R‖∞ ≤ tol·(1 + ‖F̃‖∞ + ‖f₀‖∞).
-  int max_newton_iterations = 40;    ///< Newton iterations per solve.
+  /// AFT oversampling: S = max(64, this·H), even (exact integration: S = max(64, 4H)).
+  int samples_per_harmonic = 16;
+  double newton_tolerance = 1e-10;  ///< ‖R‖∞ ≤ tol·(1 + ‖F̃‖∞ + ‖f₀‖∞).
+  int max_newton_iterations = 40;   ///< Newton iterations per solve.
   NhbStabilityMethod stability = NhbStabilityMethod::kMonodromy;
   /// Monodromy steps per base period (Magnus-4 pieces, split at the contact switches);
   /// 0: max(64, 4H).
@@ -125,6 +166,9 @@ struct NhbOptions {
   /// Fourier coefficients N_k get the leading Euler–Maclaurin term of every located kink of
   /// g(u(t)), so the aliasing error falls from O(S⁻²) to O(S⁻³) (see "AFT" above).
   bool switch_correction = false;
+  /// Sampled AFT or exact integration of piecewise-linear laws ("Exact integration" above);
+  /// switch_correction only applies to the sampled path.
+  NhbForceIntegration force_integration = NhbForceIntegration::kAuto;
   /// Stable iff max|μ| < 1 + stability_margin: multipliers of undamped parts that the meshes do
   /// not damp (|μ| = 1 to round-off, e.g. bearing modes orthogonal to the line of action of an
   /// undamped structure) count as (marginally) stable; ≥ 0 [-].
@@ -138,9 +182,9 @@ struct NhbPoint {
   MatrixXc harmonics;         ///< n×(H+1): U_k, k = 0..H of base ω = Ω/p.
   VectorX mean;               ///< n: U_0.
   VectorX rms;                ///< n: RMS of u − U_0, √(2 Σ_{k≥1} |U_k|²).
-  VectorX peak_to_peak;       ///< n: max − min of u over the S AFT samples.
-  VectorX maximum;            ///< n: max of u over the samples.
-  VectorX minimum;            ///< n: min of u over the samples.
+  VectorX peak_to_peak;       ///< n: max − min of u over the period.
+  VectorX maximum;            ///< n: max of u (extreme sample refined to u′ = 0).
+  VectorX minimum;            ///< n: min of u (likewise).
   double error_estimate = 0;  ///< RMS of the top quarter of harmonics / RMS (all coordinates).
   double tangent_omega = 0;   ///< dΩ/ds of the continuation tangent (0 for a single solve).
   int branch = 0;             ///< Branch id: incremented at every fold.
@@ -221,6 +265,8 @@ class NhbSolver {
   int harmonics() const;     ///< H.
   int samples() const;       ///< S.
   int num_unknowns() const;  ///< n(2H+1).
+  /// True when the force harmonics are integrated exactly (NhbOptions::force_integration).
+  bool exact_integration() const;
   const NhbProblem& problem() const;
 
   /// Residual R(x, Ω) (size n(2H+1)), its Jacobian ∂R/∂x and ∂R/∂Ω (nullptr → skipped).
@@ -228,15 +274,18 @@ class NhbSolver {
                 VectorX* d_omega);
   /// Initial guess at Ω: the linear contact-branch response.
   VectorX ContactGuess(double omega);
-  /// Newton with backtracking line search from `x` (overwritten with the solution).
-  /// Returns the iteration count; `status`/`residual_norm` report convergence.
+  /// Newton with backtracking line search from `x` (overwritten with the solution); after three
+  /// consecutive short steps (stalling near grazing contact) Powell's hybrid dogleg method
+  /// (GSL hybridsj) restarts from the initial `x`. Returns the iteration count (both methods);
+  /// `status`/`residual_norm` report convergence.
   int Newton(VectorX& x, double omega, Status* status, double* residual_norm);
   /// Fills omega, harmonics, mean, rms, peak_to_peak, max, min, error_estimate of `point`.
   void Describe(const VectorX& x, double omega, NhbPoint& point);
   /// Floquet multiplier of largest modulus (method per options).
   double MaxMultiplier(const VectorX& x, double omega);
-  /// The AFT sample count S per base period for H harmonics (see "AFT" above).
-  static int SamplesFor(const NhbOptions& options, int harmonics);
+  /// The sample count S per base period for H harmonics: the AFT's (see "AFT" above), or
+  /// max(64, 4H) for exact integration (the samples only bracket switches and extrema).
+  static int SamplesFor(const NhbOptions& options, int harmonics, bool exact = false);
   /// Harmonics vector x re-sized for H' harmonics (zero-padded or truncated).
   static VectorX Resize(const VectorX& x, int n, int new_harmonics);
 

@@ -29,6 +29,9 @@ class NhbClearanceLaw final : public NhbNonlinearLaw {
   void ContactBranch(MatrixX& stiffness, VectorX& offset) const override;
   /// (u − b)(u + a) (u − b when a = +∞): positive in contact, ≤ 0 in the gap.
   bool SwitchFunction(const MatrixX& u, const VectorX& phase, MatrixX& value) const override;
+  /// κ = k(1 + α cos(φ + ψ)); c(u) = u + a − [u + a]₊ + [u − b]₊ (c(u) = [u − b]₊ when
+  /// a = +∞).
+  bool PiecewiseLinearForm(NhbPiecewiseLinearForm* form) const override;
 
  private:
   VectorX stiffness_, modulation_, modulation_phase_, front_gap_, back_gap_;
