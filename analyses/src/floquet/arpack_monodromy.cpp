@@ -24,9 +24,9 @@
 #include <sstream>
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include "floquet/arnoldi.hpp"
 #include "floquet/floquet_internal.hpp"
 #include "geardyn/common/check.hpp"
+#include "geardyn/numerics/nonsymmetric_eigen.hpp"
 
 namespace geardyn::internal {
 namespace {

@@ -23,17 +23,19 @@
 #endif
 
 namespace geardyn {
+
+#if defined(GEARDYN_WITH_ARPACK)
+std::mutex& internal::ArpackMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+#endif
+
 namespace {
 
 #if defined(GEARDYN_WITH_ARPACK)
 
 constexpr std::uint64_t kStartVectorSeed = 0x41525041434BULL;
-
-/// ARPACK keeps the reverse-communication state in Fortran SAVE variables: one call at a time.
-std::mutex& ArpackMutex() {
-  static std::mutex mutex;
-  return mutex;
-}
 
 /// Text of dsaupd's negative info codes (dsaupd.f header).
 const char* DsaupdErrorText(int info) {
@@ -103,7 +105,7 @@ struct LanczosOutcome {
 template <ShiftSolveOperator Op, LinearOperator MassOp>
 LanczosOutcome RunShiftInvertLanczos(const Op& op, const MassOp& mass, int nev, int ncv, double tol,
                                      int max_iterations, bool want_vectors) {
-  const std::lock_guard<std::mutex> lock(ArpackMutex());
+  const std::lock_guard<std::mutex> lock(internal::ArpackMutex());
   LanczosOutcome outcome;
   const int n = static_cast<int>(op.rows());
   const char bmat = 'G';

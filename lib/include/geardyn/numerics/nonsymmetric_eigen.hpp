@@ -1,10 +1,10 @@
 /// @file
-/// @brief Internal: ARPACK's non-symmetric implicitly restarted Arnoldi (dnaupd/dneupd, regular
-/// mode 1, which = "LM") on a matrix-free real operator y = Op x — the largest-|θ| eigenpairs.
-///
-/// The Fortran prototypes are declared in arnoldi.cpp only (ARPACK is linked through
-/// geardyn::core, whose static library carries it as a link dependency). Calls are serialized by a
-/// process-wide mutex: ARPACK keeps the reverse-communication state in Fortran SAVE variables.
+/// @brief ARPACK's non-symmetric implicitly restarted Arnoldi (dnaupd/dneupd, regular mode 1,
+/// which = "LM") on a matrix-free real operator y = Op x — the largest-|θ| eigenpairs (used by
+/// the Floquet ARPACK monodromy). The Fortran prototypes are private to geardyn_core
+/// (lib/src/numerics/arpack_fortran.hpp). Calls are serialized by the process-wide ARPACK mutex
+/// shared with the symmetric driver: ARPACK keeps the reverse-communication state in Fortran SAVE
+/// variables.
 #pragma once
 
 #include <functional>
@@ -12,7 +12,7 @@
 
 #include "geardyn/common/eigen_types.hpp"
 
-namespace geardyn::internal {
+namespace geardyn {
 
 /// @brief What one Arnoldi run produced.
 struct ArnoldiOutcome {
@@ -35,4 +35,4 @@ struct ArnoldiOutcome {
 ArnoldiOutcome RunArnoldiLargestMagnitude(const std::function<void(const double*, double*)>& apply,
                                           int n, int nev, int ncv, double tol, int max_iterations);
 
-}  // namespace geardyn::internal
+}  // namespace geardyn

@@ -1,8 +1,7 @@
-// RunArnoldiLargestMagnitude: ARPACK dnaupd/dneupd in regular mode (bmat = 'I', mode 1,
-// which = "LM"), after ARPACK's example driver dndrv1 (ARPACK Users' Guide, Lehoucq, Sorensen &
-// Yang, SIAM 1998, §2.3 and the argument lists in arpack-ng's SRC/dnaupd.f, SRC/dneupd.f).
-#include "floquet/arnoldi.hpp"
-
+/// @file
+/// @brief RunArnoldiLargestMagnitude: ARPACK dnaupd/dneupd in regular mode (bmat = 'I', mode 1,
+/// which = "LM"), after ARPACK's example driver dndrv1 (ARPACK Users' Guide, Lehoucq, Sorensen &
+/// Yang, SIAM 1998, §2.3 and the argument lists in arpack-ng's SRC/dnaupd.f, SRC/dneupd.f).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -13,25 +12,13 @@
 #include <vector>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/numerics/nonsymmetric_eigen.hpp"
 
 #if defined(GEARDYN_WITH_ARPACK)
-extern "C" {
-// gfortran conventions (as lib/src/numerics/arpack_fortran.hpp): arguments by reference, LOGICAL
-// = 4-byte int, one hidden size_t length per CHARACTER argument, in order.
-void dnaupd_(int* ido, const char* bmat, const int* n, const char* which, const int* nev,
-             const double* tol, double* resid, const int* ncv, double* v, const int* ldv,
-             int* iparam, int* ipntr, double* workd, double* workl, const int* lworkl, int* info,
-             std::size_t bmat_len, std::size_t which_len);
-void dneupd_(const int* rvec, const char* howmny, int* select, double* dr, double* di, double* z,
-             const int* ldz, const double* sigmar, const double* sigmai, double* workev,
-             const char* bmat, const int* n, const char* which, const int* nev, const double* tol,
-             double* resid, const int* ncv, double* v, const int* ldv, int* iparam, int* ipntr,
-             double* workd, double* workl, const int* lworkl, int* info, std::size_t howmny_len,
-             std::size_t bmat_len, std::size_t which_len);
-}
+#include "numerics/arpack_fortran.hpp"
 #endif
 
-namespace geardyn::internal {
+namespace geardyn {
 
 ArnoldiOutcome RunArnoldiLargestMagnitude(const std::function<void(const double*, double*)>& apply,
                                           int n, int nev, int ncv, double tol, int max_iterations) {
@@ -42,8 +29,7 @@ ArnoldiOutcome RunArnoldiLargestMagnitude(const std::function<void(const double*
   return out;
 #else
   GEARDYN_DEMAND(nev >= 1 && nev + 2 <= ncv && ncv <= n);
-  static std::mutex mutex;
-  const std::lock_guard<std::mutex> lock(mutex);
+  const std::lock_guard<std::mutex> lock(internal::ArpackMutex());
   const char bmat = 'I';
   const char which[2] = {'L', 'M'};
   // Fixed, generic start vector (ARPACK's own random start changes from call to call).
@@ -147,4 +133,4 @@ ArnoldiOutcome RunArnoldiLargestMagnitude(const std::function<void(const double*
 #endif
 }
 
-}  // namespace geardyn::internal
+}  // namespace geardyn
