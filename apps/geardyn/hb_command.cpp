@@ -40,6 +40,7 @@ struct HbCommandOptions {
   HbSettings settings;
   bool nonlinear = false;               // --nonlinear
   std::string stability = "monodromy";  // --stability
+  int monodromy_steps = 0;              // --monodromy-steps (0: automatic)
   CLI::Option* tolerance_option = nullptr;
 };
 
@@ -79,6 +80,7 @@ int RunNonlinearHb(const HbCommandOptions& opts, const Scene& scene, const Scene
       settings.harmonics > 0 ? settings.harmonics : (by_tolerance ? 0 : kNonlinearDefaultHarmonics);
   options.hb.harmonic_tolerance = settings.tolerance;
   options.hb.stability = StabilityMethod(opts.stability);
+  options.hb.monodromy_steps = opts.monodromy_steps;
   options.start_hz = frequencies.front();
   options.end_hz = frequencies.back();
   const int n = static_cast<int>(frequencies.size());
@@ -222,6 +224,11 @@ Command AddHbCommand(CLI::App& app) {
                   "nonlinear: stability of every point: monodromy (Floquet multipliers, "
                   "default), hill (uncondensed problems only, else monodromy) or none")
       ->check(CLI::IsMember({"none", "monodromy", "hill"}));
+  cmd->add_option("--monodromy-steps", opts->monodromy_steps,
+                  "nonlinear: Magnus steps of the monodromy per period (default max(64, 4H)); "
+                  "slice meshes locate no contact switches, so |mu| near 1 is first-order in "
+                  "the step: raise it (e.g. 256) when the stable/unstable flag flickers")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--progress", opts->settings.progress, "print the progress on the error stream");
   Command command{cmd, nullptr};
   command.run_with_err = [opts](std::ostream& out, std::ostream& err) {

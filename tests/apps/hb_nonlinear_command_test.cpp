@@ -8,11 +8,13 @@
 // dashed unstable branch in the SVG, and the error for --nonlinear without slices.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <vector>
 
 #include "geardyn/cli.hpp"
 #include "support/cli_run.hpp"
@@ -187,6 +189,31 @@ TEST(HbNonlinearCommandTest, SingleFrequencyMeanForceBalancesTheTorque) {
   const json info = RunJson({"info", "builtin:kahraman-blankenship-rig"});
   const double base_radius = info["meshes"][0]["base_radius_pinion"].get<double>();
   EXPECT_NEAR(m["mean_force_n"].get<double>(), 100.0 / base_radius, 1e-3 * 100.0 / base_radius);
+}
+
+TEST(HbNonlinearCommandTest, MonodromyStepsReachTheStabilityVerdict) {
+  // The trace over the super-harmonic fold (≈ 1 475 Hz) returns along the unstable branch
+  // (|μ| up to ≈ 3). The slice law locates no contact switches, so the monodromy multiplier
+  // converges (first order) as the steps grow: at the most unstable point 256 steps are closer
+  // to 512 than 32 are. The path itself does not depend on the steps.
+  auto multipliers = [](const std::string& steps) {
+    const json report = RunJson(SliceRig(
+        {"--mesh-frequency", "1440:1480:20", "--harmonics", "8", "--monodromy-steps", steps}));
+    std::vector<double> mu;
+    for (const json& p : report["points"]) mu.push_back(p["max_multiplier"].get<double>());
+    return mu;
+  };
+  const std::vector<double> coarse = multipliers("32"), fine = multipliers("256"),
+                            finest = multipliers("512");
+  ASSERT_EQ(coarse.size(), finest.size());
+  ASSERT_EQ(fine.size(), finest.size());
+  const std::size_t worst =
+      static_cast<std::size_t>(std::max_element(finest.begin(), finest.end()) - finest.begin());
+  EXPECT_GT(finest[worst], 1.5);
+  EXPECT_LT(std::abs(fine[worst] - finest[worst]), std::abs(coarse[worst] - finest[worst]));
+  const CliRun run = RunGeardyn(SliceRig({"--mesh-frequency", "1700", "--monodromy-steps", "-1"}));
+  EXPECT_EQ(run.code, kExitBadInput);
+  EXPECT_NE(run.err.find("--monodromy-steps"), std::string::npos) << run.err;
 }
 
 TEST(HbNonlinearCommandTest, NonlinearWithoutSliceMeshIsAnError) {

@@ -282,7 +282,7 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
     if (!accept) {
       ++rejected;
       tangent_predictor = true;
-      factor_at_accepted();
+      if (smooth) factor_at_accepted();  // the sampled path factorises every iterate anyway
       ds *= 0.5;
       if (ds < c.min_step) {
         curve.summary.status = Status::kNotConverged;

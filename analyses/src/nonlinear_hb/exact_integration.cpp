@@ -8,7 +8,7 @@
 #include <complex>
 #include <numbers>
 
-#include "nonlinear_hb/safeguarded_newton.hpp"
+#include "nonlinear_hb/scalar_roots.hpp"
 #include "nonlinear_hb/solver_impl.hpp"
 
 namespace geardyn {
@@ -63,7 +63,7 @@ void NhbSolver::Impl::FindSuperlevelSet(const VectorX& x, int i, double level) {
     const double da = u_slope(i, s), db = u_slope(i, s1);
     if ((fa > 0) != (fb > 0)) {
       // Start at the zero of the Hermite cubic of the sample values and slopes (O(h⁴) off).
-      const double start = a + h * internal::HermiteZero(fa, h * da, fb, h * db);
+      const double start = a + h * internal::HermiteCubic(fa, h * da, fb, h * db).Zero();
       crossings.emplace_back(internal::SafeguardedNewton(f, a, fa, b, fb, kAngleTolerance, start),
                              fb > 0);
     } else if ((da > 0) != (db > 0) && (fa > 0) == (da < 0)) {
@@ -73,7 +73,7 @@ void NhbSolver::Impl::FindSuperlevelSet(const VectorX& x, int i, double level) {
       // h⁴/384 ‖u⁗‖∞ ≤ h⁴/384 H⁴ ‖u − U₀‖∞ (Bernstein's inequality).
       const double sign = fa > 0 ? -1.0 : 1.0;  // look for the extremum towards the level
       const double peak =
-          internal::HermiteMaximum(sign * fa, sign * h * da, sign * fb, sign * h * db);
+          internal::HermiteCubic(sign * fa, sign * h * da, sign * fb, sign * h * db).Maximum();
       if (peak < -hermite_error_bound) continue;
       const double t = internal::SafeguardedNewton(df, a, da, b, db, kAngleTolerance);
       double slope = 0.0;

@@ -56,16 +56,21 @@ KnownSpectrum Build(int n) {
   return k;
 }
 
+/// ARPACK on y = A x.
+ArnoldiOutcome Arnoldi(const MatrixX& a, int nev, int ncv, double tol, int max_iterations) {
+  const int n = static_cast<int>(a.rows());
+  const auto apply = [&](const double* x, double* y) {
+    Eigen::Map<VectorX>(y, n) = a * Eigen::Map<const VectorX>(x, n);
+  };
+  return RunArnoldiLargestMagnitude(apply, n, nev, ncv, tol, max_iterations);
+}
+
 TEST(NonsymmetricEigen, LargestEigenvaluesOfAMatrixWithKnownSpectrum) {
 #if !defined(GEARDYN_WITH_ARPACK)
   GTEST_SKIP() << "built without ARPACK";
 #endif
-  const int n = 80;
-  const KnownSpectrum k = Build(n);
-  const auto apply = [&](const double* x, double* y) {
-    Eigen::Map<VectorX>(y, n) = k.a * Eigen::Map<const VectorX>(x, n);
-  };
-  const ArnoldiOutcome out = RunArnoldiLargestMagnitude(apply, n, 5, 20, 1e-12, 300);
+  const KnownSpectrum k = Build(80);
+  const ArnoldiOutcome out = Arnoldi(k.a, 5, 20, 1e-12, 300);
   ASSERT_TRUE(out.ok) << out.message;
   ASSERT_GE(out.num_converged, 5);
   EXPECT_GT(out.applications, 0);
@@ -89,13 +94,8 @@ TEST(NonsymmetricEigen, IterationLimitIsReportedNotFatal) {
 #if !defined(GEARDYN_WITH_ARPACK)
   GTEST_SKIP() << "built without ARPACK";
 #endif
-  const int n = 80;
-  const KnownSpectrum k = Build(n);
-  const auto apply = [&](const double* x, double* y) {
-    Eigen::Map<VectorX>(y, n) = k.a * Eigen::Map<const VectorX>(x, n);
-  };
   // One restart with a minimal basis cannot converge five pairs to 1e-14.
-  const ArnoldiOutcome out = RunArnoldiLargestMagnitude(apply, n, 5, 7, 1e-14, 1);
+  const ArnoldiOutcome out = Arnoldi(Build(80).a, 5, 7, 1e-14, 1);
   EXPECT_LT(out.num_converged, 5);
   EXPECT_FALSE(out.message.empty());
 }

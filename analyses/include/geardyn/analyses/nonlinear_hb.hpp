@@ -1,7 +1,8 @@
 /// @file
 /// @brief Nonlinear harmonic balance (spec 02 "Harmonic balance", issue 6): periodic response of
 /// M q̈ + C q̇ + K q + Pᵀ g(P q, Ωt) = f₀ + Re(f₁ e^{iΩt}) with a clearance-type force g on a few
-/// "nonlinear coordinates" u = P q, by alternating frequency–time (AFT, FFTW), Newton with the
+/// "nonlinear coordinates" u = P q, by alternating frequency–time (AFT, FFTW) or, for
+/// piecewise-linear laws, exact integration ("Exact integration" below), Newton with the
 /// analytic Jacobian, pseudo-arclength continuation in Ω and Floquet stability of every point.
 ///
 /// ## Harmonic conventions (shared with the linear HB of harmonic_balance.hpp)
