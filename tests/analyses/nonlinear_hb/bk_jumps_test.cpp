@@ -121,19 +121,11 @@ TEST(NonlinearHbBkOscillator, SingleSidedImpactsJumpsMatchTimeIntegration) {
 /// single-sided impacts only, whose down-sweep jump near Ω = 0.484 lands back on the
 /// back-contact branch. Truth: slow GSL sweeps as above.
 TEST(NonlinearHbBkOscillator, BackSideContactJumpsMatchTimeIntegration) {
-  ClearanceOscillatorParameters p;
-  p.zeta = 0.08;
-  p.alpha = 0.15;
-  p.mean_force = 0.1;
-  p.alternating_force = 0.16;
+  const ClearanceOscillatorParameters p = testing::BkBackContactSet();
   NhbOptions options;
   options.harmonics = 16;
-  NhbContinuationOptions c;
-  c.omega_start = 1.6;  // far above resonance: full contact, the contact guess converges
-  c.omega_end = 0.42;
-  c.max_step = 0.1;
-  c.max_tangent_angle = 0.5;
-  const NhbCurve curve = TraceNonlinearHarmonicBalance(MakeClearanceOscillator(p), options, c);
+  const NhbCurve curve = TraceNonlinearHarmonicBalance(MakeClearanceOscillator(p), options,
+                                                       testing::BkBackContactTrace());
   ASSERT_TRUE(curve.summary.ok()) << curve.summary.BriefReport();
   ASSERT_EQ(curve.folds.size(), 2u);
   ASSERT_EQ(curve.jumps.size(), 2u);

@@ -137,27 +137,13 @@ TEST(NonlinearHbExactIntegration, SolutionsAreTheDenseAftLimit) {
   {
     // Back-contact orbit (front contact → gap → back contact → gap) of the back-contact set of
     // bk_jumps_test, reached by continuation from full contact at Ω = 1.6.
-    ClearanceOscillatorParameters p;
-    p.zeta = 0.08;
-    p.alpha = 0.15;
-    p.mean_force = 0.1;
-    p.alternating_force = 0.16;
-    const NhbProblem problem = MakeClearanceOscillator(p);
-    NhbContinuationOptions c;
-    c.omega_start = 1.6;
-    c.omega_end = 0.42;
-    c.max_step = 0.1;
-    c.max_tangent_angle = 0.5;
-    const NhbCurve curve = TraceNonlinearHarmonicBalance(problem, Exact(H), c);
+    const NhbProblem problem = MakeClearanceOscillator(testing::BkBackContactSet());
+    const NhbCurve curve =
+        TraceNonlinearHarmonicBalance(problem, Exact(H), testing::BkBackContactTrace());
     ASSERT_TRUE(curve.summary.ok()) << curve.summary.BriefReport();
     const NhbPoint& last = curve.points.back();
     ASSERT_LT(last.minimum[0], -1.0) << "not a back-contact orbit";
-    VectorX xe = VectorX::Zero(2 * H + 1);
-    xe[0] = last.harmonics(0, 0).real();
-    for (int k = 1; k <= H; ++k) {
-      xe[2 * k - 1] = last.harmonics(0, k).real();
-      xe[2 * k] = last.harmonics(0, k).imag();
-    }
+    const VectorX xe = testing::PointUnknowns(last);
     ExpectDenseAftLimit(problem, H, xe, last.omega);
   }
 }
@@ -197,11 +183,7 @@ TEST(NonlinearHbExactIntegration, NewtonFromTheContactGuessConvergesInTheBistabl
     NhbOptions o = Exact(H);
     const NhbSolveResult r = SolveNonlinearHarmonicBalance(problem, omega, o);
     ASSERT_TRUE(r.summary.ok()) << "Ω = " << omega << ": " << r.summary.BriefReport();
-    const VectorX x = Unknowns(H, [&] {
-      std::vector<std::complex<double>> h;
-      for (int k = 0; k <= H; ++k) h.push_back(r.point.harmonics(0, k));
-      return h;
-    }());
+    const VectorX x = testing::PointUnknowns(r.point);
     NhbSolver dense(problem, DenseAft(H), H);
     VectorX rd;
     dense.Evaluate(x, omega, &rd, nullptr, nullptr);

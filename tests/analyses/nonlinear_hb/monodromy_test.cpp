@@ -15,6 +15,7 @@
 #include <complex>
 #include <numbers>
 
+#include "analyses/nonlinear_hb/bk_parameter_sets.hpp"
 #include "geardyn/analyses/nonlinear_hb.hpp"
 #include "geardyn/analyses/nonlinear_hb_clearance.hpp"
 
@@ -116,32 +117,18 @@ TEST(NonlinearHbMonodromy, SingleSidedImpactOrbitsMatchGslVariationalEquation) {
 }
 
 TEST(NonlinearHbMonodromy, BackContactOrbitMatchesGslVariationalEquation) {
-  ClearanceOscillatorParameters p;
-  p.zeta = 0.08;
-  p.alpha = 0.15;
-  p.mean_force = 0.1;
-  p.alternating_force = 0.16;
-  // The back-contact branch of bk_jumps_test: traced from Ω = 1.6 (full contact) down through
-  // the bistable band; its last point (Ω ≈ 0.42) has four switches per period (front contact
-  // → gap → back contact → gap).
+  const ClearanceOscillatorParameters p = testing::BkBackContactSet();
+  // The back-contact branch of bk_jumps_test; its last point (Ω ≈ 0.42) has four switches per
+  // period (front contact → gap → back contact → gap).
   NhbOptions o;
   o.harmonics = 16;  // the orbit is any trigonometric polynomial here
   o.stability = NhbStabilityMethod::kNone;
-  NhbContinuationOptions c;
-  c.omega_start = 1.6;
-  c.omega_end = 0.42;
-  c.max_step = 0.1;
-  c.max_tangent_angle = 0.5;
-  const NhbCurve curve = TraceNonlinearHarmonicBalance(MakeClearanceOscillator(p), o, c);
+  const NhbCurve curve =
+      TraceNonlinearHarmonicBalance(MakeClearanceOscillator(p), o, testing::BkBackContactTrace());
   ASSERT_TRUE(curve.summary.ok()) << curve.summary.BriefReport();
   const NhbPoint& last = curve.points.back();
   ASSERT_LT(last.minimum[0], -1.0) << "not a back-contact orbit";
-  Orbit orbit{p, last.omega, VectorX::Zero(33)};
-  orbit.x[0] = last.harmonics(0, 0).real();
-  for (int k = 1; k <= 16; ++k) {
-    orbit.x[2 * k - 1] = last.harmonics(0, k).real();
-    orbit.x[2 * k] = last.harmonics(0, k).imag();
-  }
+  const Orbit orbit{p, last.omega, testing::PointUnknowns(last)};
   CheckOrbit(orbit);
 }
 

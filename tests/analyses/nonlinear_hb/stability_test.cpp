@@ -37,18 +37,6 @@ const NhbCurve& TraceSetA() {
   return curve;
 }
 
-/// The Newton vector x (layout of nonlinear_hb.hpp) of a point's harmonics (n = 1).
-VectorX ToUnknowns(const NhbPoint& pt) {
-  const int H = static_cast<int>(pt.harmonics.cols()) - 1;
-  VectorX x(2 * H + 1);
-  x[0] = pt.harmonics(0, 0).real();
-  for (int k = 1; k <= H; ++k) {
-    x[2 * k - 1] = pt.harmonics(0, k).real();
-    x[2 * k] = pt.harmonics(0, k).imag();
-  }
-  return x;
-}
-
 TEST(NonlinearHbStability, MiddleBranchUnstableOuterBranchesStable) {
   const NhbCurve& curve = TraceSetA();
   ASSERT_TRUE(curve.summary.ok()) << curve.summary.BriefReport();
@@ -78,7 +66,7 @@ TEST(NonlinearHbStability, HillAgreesWithMonodromy) {
   for (int i = 0; i < static_cast<int>(curve.points.size()); i += 9) {
     const NhbPoint& pt = curve.points[i];
     if (std::abs(pt.omega - w0) < 5e-3 * w0 || std::abs(pt.omega - w1) < 5e-3 * w1) continue;
-    const double mu = solver.MaxMultiplier(ToUnknowns(pt), pt.omega);
+    const double mu = solver.MaxMultiplier(testing::PointUnknowns(pt), pt.omega);
     EXPECT_EQ(mu < 1.0, pt.stable) << "Ω = " << pt.omega;
     EXPECT_NEAR(mu, pt.max_multiplier, 0.05 * pt.max_multiplier) << "Ω = " << pt.omega;
   }

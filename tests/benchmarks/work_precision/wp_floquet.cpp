@@ -52,6 +52,15 @@ void Sdof() {
   }
 }
 
+// Error of the reported multipliers: each against the nearest multiplier of the full system.
+double NearestError(const VectorXc& reported, const VectorXc& full) {
+  double err = 0.0;
+  for (int i = 0; i < reported.size(); ++i) {
+    err = std::max(err, (full.array() - reported[i]).abs().minCoeff());
+  }
+  return err;
+}
+
 void Pair12() {
   const SystemModel model = HandPair(HandSmoothCore(0.2, 0.05, 900.0));
   FloquetOptions base;
@@ -100,21 +109,8 @@ void Pair12() {
     o.tolerance = tol;
     FloquetResult r;
     const double time = wp::TimeIt([&] { r = ComputeFloquet(model, o); });
-    double err = 0.0;
-    for (int i = 0; i < r.multipliers.size(); ++i) {
-      err = std::max(err, (ref.array() - r.multipliers[i]).abs().minCoeff());
-    }
-    Emit("pair12/arpack_monodromy", tol, time, err, r);
+    Emit("pair12/arpack_monodromy", tol, time, NearestError(r.multipliers, ref), r);
   }
-}
-
-// Error of the reported multipliers: each against the nearest multiplier of the full system.
-double NearestError(const VectorXc& reported, const VectorXc& full) {
-  double err = 0.0;
-  for (int i = 0; i < reported.size(); ++i) {
-    err = std::max(err, (full.array() - reported[i]).abs().minCoeff());
-  }
-  return err;
 }
 
 void Shaft() {

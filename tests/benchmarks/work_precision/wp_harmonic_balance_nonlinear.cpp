@@ -61,17 +61,6 @@ constexpr double kErrorNewtonTolerance = 1e-13;
 /// Reference points with |dΩ/ds| below this (scaled tangent) are near a fold.
 constexpr double kFoldZone = 0.05;
 
-VectorX ToUnknowns(const NhbPoint& pt, int H) {
-  VectorX x = VectorX::Zero(2 * H + 1);
-  const int Hr = static_cast<int>(pt.harmonics.cols()) - 1;
-  x[0] = pt.harmonics(0, 0).real();
-  for (int k = 1; k <= std::min(H, Hr); ++k) {
-    x[2 * k - 1] = pt.harmonics(0, k).real();
-    x[2 * k] = pt.harmonics(0, k).imag();
-  }
-  return x;
-}
-
 /// Max relative RMS error of H at the reference points; also the mean Newton iterations.
 double ErrorOf(int H, const std::vector<NhbPoint>& ref, double* iterations,
                NhbForceIntegration integration = NhbForceIntegration::kExact) {
@@ -89,7 +78,7 @@ double ErrorOf(int H, const std::vector<NhbPoint>& ref, double* iterations,
     // of the fold moves the RMS there by O(√ε)); the folds are compared by position instead.
     if (std::abs(r.tangent_omega) < kFoldZone) continue;
     ++count;
-    VectorX x = ToUnknowns(r, H);
+    VectorX x = testing::PointUnknowns(r, H);
     Status st;
     double rn;
     its += solver.Newton(x, r.omega, &st, &rn);
@@ -142,7 +131,7 @@ int main() {
     NhbSolver solver(problem, o, H);
     const double t_point = wp::TimeIt([&] {
                              for (const NhbPoint& r : ref) {
-                               VectorX x = ToUnknowns(r, H);
+                               VectorX x = testing::PointUnknowns(r, H);
                                Status st;
                                double rn;
                                solver.Newton(x, r.omega, &st, &rn);
