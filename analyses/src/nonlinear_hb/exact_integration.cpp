@@ -19,24 +19,6 @@ constexpr double kAngleTolerance = 4e-16 * kTwoPi;
 
 }  // namespace
 
-void NhbSolver::Impl::EvaluateCoordinate(const VectorX& x, int i, double theta,
-                                         double out[3]) const {
-  // u = U_0 + 2 Re Σ U_k z^k, u′ = 2 Re Σ ik U_k z^k, u″ = −2 Re Σ k² U_k z^k, z = e^{iθ}.
-  const std::complex<double> z = std::polar(1.0, theta);
-  std::complex<double> zk = 1.0;
-  double value = x[Re(0, i)], slope = 0.0, curvature = 0.0;
-  for (int k = 1; k <= H; ++k) {
-    zk *= z;
-    const std::complex<double> c = std::complex<double>(x[Re(k, i)], x[Im(k, i)]) * zk;
-    value += 2.0 * c.real();
-    slope -= 2.0 * k * c.imag();
-    curvature -= 2.0 * k * k * c.real();
-  }
-  out[0] = value;
-  out[1] = slope;
-  out[2] = curvature;
-}
-
 void NhbSolver::Impl::FindSuperlevelSet(const VectorX& x, int i, double level) {
   const double h = kTwoPi / S;
   auto f = [&](double theta, double* slope) {

@@ -1,8 +1,8 @@
 /// @file
-/// @brief Contact switches of the nonlinear HB orbit: u(θ) synthesized at arbitrary base angles
-/// θ = ωt from the harmonics, the switching time located by the Illinois (modified regula
-/// falsi) method on the law's SwitchFunction, and the Euler–Maclaurin kink correction of the
-/// sampled Fourier coefficients (nonlinear_hb.hpp, "AFT").
+/// @brief Contact switches of the nonlinear HB orbit: u(θ) and its derivatives synthesized at
+/// arbitrary base angles θ = ωt from the harmonics, the switching time located by the Illinois
+/// (modified regula falsi) method on the law's SwitchFunction, and the Euler–Maclaurin kink
+/// correction of the sampled Fourier coefficients (nonlinear_hb.hpp, "AFT").
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -12,26 +12,36 @@
 
 namespace geardyn {
 
-// u(θ) = U_0 + 2 Re Σ_{k≥1} U_k e^{ikθ}, du/dθ = 2 Re Σ ik U_k e^{ikθ} (e^{ikθ} by recurrence).
+void NhbSolver::Impl::EvaluateCoordinate(const VectorX& x, int i, double theta,
+                                         double out[3]) const {
+  // u = U_0 + 2 Re Σ U_k z^k, u′ = 2 Re Σ ik U_k z^k, u″ = −2 Re Σ k² U_k z^k, z = e^{iθ}.
+  const std::complex<double> z = std::polar(1.0, theta);
+  std::complex<double> zk = 1.0;
+  double value = x[Re(0, i)], slope = 0.0, curvature = 0.0;
+  for (int k = 1; k <= H; ++k) {
+    zk *= z;
+    const std::complex<double> c = std::complex<double>(x[Re(k, i)], x[Im(k, i)]) * zk;
+    value += 2.0 * c.real();
+    slope -= 2.0 * k * c.imag();
+    curvature -= 2.0 * k * k * c.real();
+  }
+  out[0] = value;
+  out[1] = slope;
+  out[2] = curvature;
+}
+
+// u(θ) and du/dθ of every coordinate at the given angles.
 void NhbSolver::Impl::SynthesizeAt(const VectorX& x, const VectorX& theta, MatrixX& uu,
                                    MatrixX* du) const {
   const Eigen::Index count = theta.size();
   uu.resize(n, count);
   if (du) du->resize(n, count);
+  double d[3];
   for (Eigen::Index j = 0; j < count; ++j) {
-    const std::complex<double> z = std::polar(1.0, theta[j]);
     for (int i = 0; i < n; ++i) {
-      std::complex<double> zk = 1.0;
-      double value = x[Re(0, i)];
-      double slope = 0.0;
-      for (int k = 1; k <= H; ++k) {
-        zk *= z;
-        const std::complex<double> c = std::complex<double>(x[Re(k, i)], x[Im(k, i)]) * zk;
-        value += 2.0 * c.real();
-        slope -= 2.0 * k * c.imag();  // Re(ik c) = −k Im c
-      }
-      uu(i, j) = value;
-      if (du) (*du)(i, j) = slope;
+      EvaluateCoordinate(x, i, theta[j], d);
+      uu(i, j) = d[0];
+      if (du) (*du)(i, j) = d[1];
     }
   }
 }
