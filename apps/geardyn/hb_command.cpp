@@ -152,6 +152,10 @@ int RunNonlinearHb(const HbCommandOptions& opts, const Scene& scene, const Scene
 
 int RunLinearHb(const HbCommandOptions& opts, const Scene& scene, const SceneSystem& built,
                 const std::vector<double>& frequencies, std::ostream& out, std::ostream& err) {
+  GEARDYN_THROW_UNLESS(opts.settings.harmonics == 0 || opts.tolerance_option->count() == 0,
+                       "--tolerance: chooses H (H = 8, 16, ... until the RMS DTE changes by at "
+                       "most the tolerance) and is not used with a fixed --harmonics "
+                           << opts.settings.harmonics << "; give one of them");
   const HbOptions options = MakeHbOptions(opts.settings);
   HbProgress progress;
   if (opts.settings.progress) {
@@ -207,11 +211,13 @@ Command AddHbCommand(CLI::App& app) {
                   "continuation range; n is its resolution (each step advances at most 1/n of "
                   "the range: at least about n points, more near resonances and folds)");
   cmd->add_option("--harmonics", opts->settings.harmonics,
-                  "number of harmonics H of the mesh frequency (linear default: from "
-                  "--tolerance; nonlinear default: 24)");
+                  "number of harmonics H of the mesh frequency (linear: each with the "
+                  "sidebands of the tooth errors, at most 2048; default: from --tolerance; "
+                  "nonlinear default: 24)");
   opts->tolerance_option = cmd->add_option(
       "--tolerance", opts->settings.tolerance,
-      "linear: relative change of the RMS DTE from H/2 to H accepted (default 1e-4); "
+      "linear, without --harmonics: relative change of the RMS DTE from H/2 to H accepted "
+      "(default 1e-4; an error with --harmonics); "
       "nonlinear, when given without --harmonics: H = 8, 16, ... until the RMS of the top "
       "quarter of the harmonics relative to the RMS is below it");
   cmd->add_flag("--linear", opts->settings.linear,

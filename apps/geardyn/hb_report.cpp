@@ -81,6 +81,9 @@ HbOptions MakeHbOptions(const HbSettings& settings) {
   HbOptions options;
   options.harmonics = settings.harmonics;
   options.tolerance = settings.tolerance;
+  std::string why;
+  GEARDYN_THROW_UNLESS(options.IsValid(&why),
+                       (settings.harmonics > kMaxHbHarmonics ? "--harmonics: " : "") << why);
   return options;
 }
 
@@ -90,7 +93,8 @@ json MakeHbReport(const std::string& scene_source, const HbSettings& settings,
   report["scene"] = scene_source;
   report["mode"] = "linear";
   report["harmonics"] = settings.harmonics;
-  report["tolerance"] = settings.tolerance;
+  // The tolerance chooses H; with a fixed H it is not used (and not echoed).
+  report["tolerance"] = settings.harmonics > 0 ? json(nullptr) : json(settings.tolerance);
   report["status"] = StatusName(sweep.summary.status);
   report["message"] = sweep.summary.message;
   json warnings = json::array();
@@ -110,6 +114,9 @@ json MakeHbReport(const std::string& scene_source, const HbSettings& settings,
     json p;
     p["mesh_frequency_hz"] = r.mesh_frequency_hz;
     p["harmonics"] = r.harmonics;
+    p["highest_harmonic"] = r.highest_harmonic;
+    p["period_meshes"] = r.period_meshes;
+    p["reciprocal_condition"] = r.reciprocal_condition;
     p["method"] = ToString(r.method_used);
     p["error_estimate"] = r.summary.error_estimate;
     p["status"] = StatusName(r.summary.status);

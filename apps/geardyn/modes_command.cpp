@@ -21,7 +21,11 @@ struct ModesCommandOptions {
 
 int RunModes(const ModesCommandOptions& opts, std::ostream& out) {
   const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
-  const SceneSystem built = BuildSceneSystem(scene);
+  // Modes use the mean operator only: ε (a table over the hunting period with tooth errors)
+  // is not built.
+  SceneSystemOptions system_options;
+  system_options.transmission_error = false;
+  const SceneSystem built = BuildSceneSystem(scene, system_options);
   const int n = built.model.num_dofs();
   const ModalOptions options = MakeModesOptions(opts.settings, n);
   const ModalResult result = ComputeModes(built.model, options);

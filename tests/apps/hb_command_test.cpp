@@ -89,6 +89,10 @@ TEST(HbCommandTest, BadOptionsExitWithTwoAndNameTheOption) {
       {{"--mesh-frequency", "100:200:2.5"}, "--mesh-frequency"},
       {{"--harmonics", "-3"}, "--harmonics"},
       {{"--tolerance", "0"}, "--tolerance"},
+      // A fixed H with a tolerance: the tolerance would be ignored (issue 12).
+      {{"--harmonics", "6", "--tolerance", "1e-9"}, "--tolerance"},
+      // Bounded with the memory it would take, not bad_alloc (issue 12).
+      {{"--harmonics", "100000"}, "GB"},
   };
   for (const auto& c : cases) {
     std::vector<std::string> args = {"hb", "builtin:helical-pair"};
@@ -97,6 +101,48 @@ TEST(HbCommandTest, BadOptionsExitWithTwoAndNameTheOption) {
     EXPECT_EQ(run.code, kExitBadInput) << c.args[1];
     EXPECT_NE(run.err.find(c.needle), std::string::npos) << run.err;
   }
+}
+
+TEST(HbCommandTest, RunoutKeepsTheMeshHarmonicsOfTheRig) {
+  // Issue 12: a gear runout makes the hunting period P = 50 meshes; H = 8 counted harmonics of
+  // ω_m/P and dropped the mesh frequency (RMS DTE 0.0064 µm instead of 1.67 µm). K is
+  // mesh-periodic, so the mesh orders do not couple with the runout's sidebands: their DTE lines
+  // must equal those of the same rig without runout (solved with P = 1), and the RMS can only
+  // grow by the runout's own lines.
+  const std::vector<std::string> base = {
+      "hb", "builtin:kahraman-blankenship-rig", "--mesh-frequency", "2000", "--harmonics", "8"};
+  std::vector<std::string> runout = Args(base);
+  runout.insert(runout.end(), {"--set", "mesh.pinion-wheel.errors.gear_runout=1e-5"});
+  const nlohmann::json with = RunJson(runout);
+  const nlohmann::json without = RunJson(Args(base));
+  const auto& a = with["points"][0];
+  const auto& b = without["points"][0];
+  ASSERT_EQ(a["period_meshes"], 50);
+  ASSERT_EQ(b["period_meshes"], 1);
+  const auto amp_a = a["meshes"][0]["dte_amplitudes_m"].get<std::vector<double>>();
+  const auto amp_b = b["meshes"][0]["dte_amplitudes_m"].get<std::vector<double>>();
+  ASSERT_EQ(amp_a.size(), 8u * 50u + 2u);  // up to the sideband 8·50 + 1
+  ASSERT_EQ(amp_b.size(), 9u);
+  for (int j = 1; j <= 8; ++j) {
+    EXPECT_NEAR(amp_a[50 * j], amp_b[j], 1e-9 * amp_b[1]) << "mesh order " << j;
+  }
+  const double rms_a = a["meshes"][0]["rms_dte_m"].get<double>();
+  const double rms_b = b["meshes"][0]["rms_dte_m"].get<double>();
+  EXPECT_GE(rms_a, rms_b * (1.0 - 1e-9));
+  EXPECT_GT(rms_b, 1e-6);  // about 1.7 µm: the mesh harmonic is there
+}
+
+TEST(HbCommandTest, WarnsWhenAnUndampedModeDominates) {
+  // Issue 12: the rig's bearings have no damping, so its bearing modes have a modal damping
+  // ratio of exactly 0; at 3290 Hz the response is theirs (RMS DTE about 2 mm). The verdict
+  // must say so instead of a plain success.
+  const nlohmann::json report = RunJson(
+      {"hb", "builtin:kahraman-blankenship-rig", "--mesh-frequency", "3290", "--harmonics", "8"});
+  bool warned = false;
+  for (const auto& w : report["warnings"]) {
+    warned = warned || w.get<std::string>().find("undamped mode") != std::string::npos;
+  }
+  EXPECT_TRUE(warned) << report["warnings"].dump();
 }
 
 TEST(HbCommandTest, TextModeListsTheMesh) {

@@ -3,6 +3,7 @@
 /// of two-sided harmonic blocks, the rigid-body penalty, and the output sampler (FFTW).
 #pragma once
 
+#include <Eigen/SparseLU>
 #include <complex>
 #include <cstdint>
 #include <memory>
@@ -17,6 +18,14 @@
 namespace geardyn::internal {
 
 using Complex = std::complex<double>;
+using ComplexSparse = Eigen::SparseMatrix<Complex, Eigen::ColMajor, int>;
+
+/// @brief Estimate of the reciprocal 1-norm condition number 1/(‖A‖₁ ‖A⁻¹‖₁) of a factorized
+/// sparse matrix: ‖A⁻¹‖₁ by Hager's method as refined by Higham (1988, ACM TOMS 14(4) 381–396,
+/// Alg. 4.1, complex form), at most 5 solves with A and 5 with Aᴴ. The estimate of ‖A⁻¹‖₁ is a
+/// lower bound (so the result is ≥ the true value), usually exact or within a factor 3.
+/// @return the estimate; 0 when a solve is not finite.
+double EstimateSparseRcond(const ComplexSparse& A, Eigen::SparseLU<ComplexSparse>& lu);
 
 // ------------------------------------------------------------------ real layout
 
@@ -56,6 +65,12 @@ double BalanceMeanLoad(const RigidModes& rigid, VectorXc* f0);
 /// @brief Throws InvalidInput for a NonlinearMeshCore or a phase ratio ≠ 1; returns warnings
 /// (slice cores linearized).
 std::vector<std::string> CheckLinearHbModel(const SystemModel& model);
+
+/// @brief P_K: the period of K(θ) and C(θ) alone [mesh cycles] — the lcm over the meshes of the
+/// stiffness channels' period for a LinearMeshCore (ε enters the load K2 ε only), of the whole
+/// core's for the others. It divides SystemModel::period_meshes(); the two differ when only the
+/// forcing repeats over the hunting period (pitch errors, runout).
+std::int64_t OperatorPeriodMeshes(const SystemModel& model);
 
 /// @brief Smallest power of two ≥ max(256, 8(H+1)), or `requested` when > 0.
 int ChooseTimeSamples(int harmonics, int requested);

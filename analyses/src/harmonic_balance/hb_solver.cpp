@@ -6,11 +6,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
+#include <limits>
 #include <map>
 #include <numbers>
+#include <sstream>
 
 #include "geardyn/analyses/harmonic_balance.hpp"
 #include "geardyn/common/check.hpp"
+#include "geardyn/numerics/symmetric_eigen.hpp"
 #include "geardyn/system/system_harmonics.hpp"
 #include "geardyn/system/workspace.hpp"
 #include "hb_internal.hpp"
@@ -19,12 +23,31 @@ namespace geardyn {
 namespace {
 
 using internal::Complex;
-using ComplexSparse = Eigen::SparseMatrix<Complex, Eigen::ColMajor, int>;
+using internal::ComplexSparse;
 
 // Relative size below which a θ-varying harmonic counts as zero (round-off of the expansion).
 constexpr double kVaryingTol = 1e-13;
 // Estimated reciprocal condition number below which a solve is reported as unreliable.
 constexpr double kMinRcond = 1e-14;
+// Estimated reciprocal condition number below which a warning names the digits lost.
+constexpr double kWarnRcond = 1e-10;
+// A forcing class whose largest load harmonic is below this fraction of the largest is not
+// solved (round-off of the expansion).
+constexpr double kForcingTol = 1e-12;
+// Modal damping ratio below which a mode of the mean system counts as undamped [-].
+constexpr double kUndampedZeta = 1e-6;
+// Share of the alternating response (mass-weighted) above which an undamped mode "dominates".
+constexpr double kUndampedShare = 0.1;
+// Largest model whose mean modes are computed (dense) for the undamped-mode check.
+constexpr int kMaxModalCheckDofs = 3000;
+// Largest working memory of one H accepted (EstimateBytes) [B].
+constexpr double kMaxHbBytes = 2.0 * 1024 * 1024 * 1024;
+
+std::string FormatG(double x) {
+  std::ostringstream os;
+  os << std::setprecision(3) << x;
+  return os.str();
+}
 
 // Scatters Gᵀ X2 G of a mesh (X2 2×2 real) into triplets.
 void ScatterMesh(const SystemMesh& mesh, const Matrix2& X2,
@@ -41,28 +64,87 @@ void ScatterMesh(const SystemMesh& mesh, const Matrix2& X2,
 
 }  // namespace
 
-// Everything that depends on (model, H) but not on the frequency.
+namespace internal {
+
+double EstimateSparseRcond(const ComplexSparse& A, Eigen::SparseLU<ComplexSparse>& lu) {
+  const Eigen::Index n = A.cols();
+  if (n == 0) return 1.0;
+  double norm_a = 0.0;
+  for (Eigen::Index c = 0; c < A.outerSize(); ++c) {
+    double sum = 0.0;
+    for (ComplexSparse::InnerIterator it(A, c); it; ++it) sum += std::abs(it.value());
+    norm_a = std::max(norm_a, sum);
+  }
+  VectorXc x = VectorXc::Constant(n, Complex(1.0 / static_cast<double>(n), 0.0));
+  double est = 0.0;
+  for (int iter = 0; iter < 5; ++iter) {
+    const VectorXc y = lu.solve(x);
+    if (!y.allFinite()) return 0.0;
+    const double norm_y = y.cwiseAbs().sum();
+    if (iter > 0 && norm_y <= est) break;
+    est = norm_y;
+    VectorXc xi(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double a = std::abs(y(i));
+      xi(i) = a > 0.0 ? y(i) / a : Complex(1.0, 0.0);
+    }
+    const VectorXc z = lu.adjoint().solve(xi);
+    Eigen::Index j = 0;
+    const double zmax = z.cwiseAbs().maxCoeff(&j);
+    if (iter > 0 && zmax <= z.dot(x).real()) break;
+    x = VectorXc::Unit(n, j);
+  }
+  return norm_a > 0.0 && est > 0.0 ? 1.0 / (norm_a * est) : 0.0;
+}
+
+}  // namespace internal
+
+using internal::EstimateSparseRcond;
+
+// Everything that depends on (model, H) but not on the frequency. Harmonic indices k are of
+// Ω = ω_m/P (P = period_meshes()); the operator K, C repeats every q = P/P_K of them, so only
+// harmonics in one class k ≡ ±c (mod q) couple (harmonic_balance.hpp "Harmonic set").
 struct HbSetup {
-  int H = 0;
+  int H = 0;  // harmonics of the operator frequency ω_m/P_K (mesh orders when P_K = 1)
   int n = 0;
+  int q = 1;     // P / P_K
+  int kmax = 0;  // largest kept one-sided harmonic
   bool dense = true;
-  std::vector<MeshHarmonics> mesh_harmonics;  // m = 0 … 2H
+  std::vector<int> ks;                        // kept one-sided harmonics, ascending, ks[0] = 0
+  std::vector<int> pos;                       // (kmax + 1) position of k in ks, −1 if not kept
+  std::vector<int> classes;                   // c ∈ [0, q/2] solved (0 always)
+  std::vector<MeshHarmonics> mesh_harmonics;  // m = 0 … (2H+1)q
   SparseMatrix M, Kbar, Cbar;                 // mean system
   SparseMatrix Kbar0;                         // K̄ + rigid-body penalty W (harmonic 0 only)
   MatrixX M_d, Kbar_d, Kbar0_d, Cbar_d;       // dense copies (dense storage)
-  std::vector<VectorXc> F;                    // k = 0 … H (F_0 balanced)
+  std::vector<VectorXc> F;                    // per position in ks (F_0 balanced)
   double unbalanced = 0.0;
   // Mesh-deflection channels (rows of G_all) whose stiffness or damping varies with θ.
   int r = 0;
   MatrixX Gt_d;                  // (n × r) dense G_allᵀ
   SparseMatrix Gt;               // (n × r)
   SparseMatrix G;                // (r × n)
-  std::vector<MatrixXc> dK, dC;  // m = 0 … 2H: (r × r) harmonics of the θ-varying part
+  std::vector<MatrixXc> dK, dC;  // j = 0 … 2H+1: (r × r) harmonic jq of the θ-varying part
   // Reused factorizations.
   Eigen::PartialPivLU<MatrixXc> dense_lu;
   Eigen::SparseLU<ComplexSparse> sparse_lu;
   bool pattern_analysed = false;
   std::unique_ptr<internal::HbOutputSampler> sampler;
+
+  // ΔK, ΔC at harmonic m (a multiple of q), X_{−m} = conj(X_m).
+  MatrixXc DeltaAt(const std::vector<MatrixXc>& d, int m) const {
+    const MatrixXc& x = d[static_cast<size_t>(std::abs(m) / q)];
+    return m >= 0 ? x : MatrixXc(x.conjugate());
+  }
+};
+
+// Undamped modes of the mean system (harmonic_balance.hpp "Undamped modes").
+struct UndampedModes {
+  bool checked = false;
+  std::string note;  // why the check was skipped
+  MatrixX phi;       // (n × u) M-orthonormal
+  VectorX freq_hz;   // (u)
+  VectorX zeta;      // (u) φᵀ C̄ φ / (2ω)
 };
 
 struct HarmonicBalanceSolver::Impl {
@@ -71,25 +153,91 @@ struct HarmonicBalanceSolver::Impl {
   std::vector<std::string> warnings;
   internal::RigidModes rigid;
   bool rigid_done = false;
+  UndampedModes undamped;
   std::map<int, std::unique_ptr<HbSetup>> setups;
 
+  std::int64_t ClassModulus() const {
+    return model.period_meshes() / internal::OperatorPeriodMeshes(model);
+  }
+  double EstimateBytes(int H) const;
   HbSetup& Setup(int H);
+  void FindUndampedModes(const HbSetup& s);
+  void CheckUndampedShare(const HbSetup& s, const MatrixXc& Q, double f_m, Summary* out) const;
   MatrixXc SolveDecoupledOrCondensed(HbSetup& s, double omega, bool condensed, double* rcond,
                                      long* factorizations);
   MatrixXc SolveDirect(HbSetup& s, double omega, double* rcond);
   HbResult SolveFixed(int H, double f_m);
 };
 
+double HarmonicBalanceSolver::Impl::EstimateBytes(int H) const {
+  const double q = static_cast<double>(ClassModulus());
+  const double n = model.num_dofs();
+  const double meshes = model.num_meshes();
+  const double kmax = H * q + q / 2.0;
+  const double r = 2.0 * meshes;
+  // Mesh harmonics (3 arrays of 2×2 complex up to (2H+1)q) and the expansion's samples (8
+  // channels, ≥ 2 per harmonic, real and complex), the response (n × (kmax+1)), the sampler (S ≤
+  // 16(kmax+1) samples of q, q̇, FFT buffers and the per-mesh K2, C2, ε), the per-harmonic solves
+  // (ks ≤ 2 kmax/q·q… bounded by kmax+1 columns of n(1+r)), the class coupling ((2H+2)r)².
+  const double harm = (2.0 * H + 2.0) * q;
+  double bytes = meshes * harm * 160.0 + harm * 2.0 * 8.0 * 24.0;
+  bytes += 16.0 * n * (kmax + 1.0);
+  bytes += 16.0 * (kmax + 1.0) * (4.0 * 8.0 * n + meshes * 96.0);
+  bytes += 16.0 * std::min(kmax + 1.0, (2.0 * H + 2.0) * q) * n * (1.0 + r) / std::max(q, 1.0) *
+           std::min(q, 2.0 * H + 2.0);
+  bytes += 16.0 * std::pow((2.0 * H + 2.0) * r, 2);
+  return bytes;
+}
+
 HbSetup& HarmonicBalanceSolver::Impl::Setup(int H) {
   auto it = setups.find(H);
   if (it != setups.end()) return *it->second;
   auto s = std::make_unique<HbSetup>();
   const int n = model.num_dofs();
+  const std::int64_t q64 = ClassModulus();
+  GEARDYN_THROW_UNLESS(
+      (2 * static_cast<std::int64_t>(H) + 2) * q64 < std::numeric_limits<int>::max(),
+      "harmonic balance: H = " << H << " mesh orders over a period of " << q64
+                               << " operator periods exceed the index range");
   s->H = H;
   s->n = n;
+  s->q = static_cast<int>(q64);
+  const int q = s->q;
   s->dense = model.storage_hint() == StorageKind::kDense;
-  s->mesh_harmonics = ExpandMeshHarmonics(model, 2 * H);
+  s->mesh_harmonics = ExpandMeshHarmonics(model, (2 * H + 1) * q);
   const auto& meshes = model.meshes();
+
+  // Classes of the forcing: c = k mod q folded to [0, q/2]; a class is solved when some load
+  // harmonic k ≤ Hq + q/2 in it exceeds kForcingTol of the largest (0 always: the mean).
+  const int reach = H * q + q / 2;
+  std::vector<double> class_size(q / 2 + 1, 0.0);
+  double largest = 0.0;
+  for (size_t k = 0; k < meshes.size(); ++k) {
+    for (int m = 0; m <= reach; ++m) {
+      const double a = s->mesh_harmonics[k].load[m].cwiseAbs().maxCoeff();
+      const int c = m % q;
+      class_size[std::min(c, q - c)] = std::max(class_size[std::min(c, q - c)], a);
+      largest = std::max(largest, a);
+    }
+  }
+  s->classes.push_back(0);
+  for (int c = 1; c <= q / 2; ++c) {
+    if (class_size[c] > kForcingTol * largest) s->classes.push_back(c);
+  }
+  // Kept one-sided harmonics: jq ± c, j = 0 … H (the mesh orders and their sidebands).
+  std::vector<int> ks;
+  for (int c : s->classes) {
+    for (int j = 0; j <= H; ++j) {
+      ks.push_back(j * q + c);
+      if (c > 0 && j >= 1) ks.push_back(j * q - c);
+    }
+  }
+  std::sort(ks.begin(), ks.end());
+  ks.erase(std::unique(ks.begin(), ks.end()), ks.end());
+  s->ks = ks;
+  s->kmax = ks.back();
+  s->pos.assign(s->kmax + 1, -1);
+  for (size_t i = 0; i < ks.size(); ++i) s->pos[ks[i]] = static_cast<int>(i);
 
   // Mean K̄, C̄ from the m = 0 harmonics (real) plus the constant parts.
   std::vector<Eigen::Triplet<double>> tk, tc;
@@ -128,22 +276,22 @@ HbSetup& HarmonicBalanceSolver::Impl::Setup(int H) {
     s->Cbar_d = MatrixX(s->Cbar);
   }
 
-  // Forcing F_k = δ_k0 f0 + Σ Gᵀ (K2 ε)_k.
-  s->F.assign(H + 1, VectorXc::Zero(n));
+  // Forcing F_k = δ_k0 f0 + Σ Gᵀ (K2 ε)_k at the kept harmonics.
+  s->F.assign(ks.size(), VectorXc::Zero(n));
   s->F[0] = model.constant_load().cast<Complex>();
   for (size_t k = 0; k < meshes.size(); ++k) {
     const SystemMesh& mesh = meshes[k];
-    for (int h = 0; h <= H; ++h) {
-      const Eigen::Matrix<Complex, 12, 1> f =
-          mesh.G.transpose().cast<Complex>() * s->mesh_harmonics[k].load[h];
+    const Eigen::Matrix<Complex, 12, 2> Gt = mesh.G.transpose().cast<Complex>();
+    for (size_t i = 0; i < ks.size(); ++i) {
+      const Eigen::Matrix<Complex, 12, 1> f = Gt * s->mesh_harmonics[k].load[ks[i]];
       for (int a = 0; a < 12; ++a) {
-        if (mesh.dofs[a] >= 0) s->F[h](mesh.dofs[a]) += f(a);
+        if (mesh.dofs[a] >= 0) s->F[i](mesh.dofs[a]) += f(a);
       }
     }
   }
   s->unbalanced = internal::BalanceMeanLoad(rigid, &s->F[0]);
 
-  // Channels whose K2 or C2 varies with θ (the rank of the LTV part).
+  // Channels whose K2 or C2 varies with θ (the rank of the LTV part); only harmonics jq exist.
   std::vector<std::pair<int, int>> channels;  // (mesh, row of G)
   for (size_t k = 0; k < meshes.size(); ++k) {
     const MeshHarmonics& mh = s->mesh_harmonics[k];
@@ -151,7 +299,7 @@ HbSetup& HarmonicBalanceSolver::Impl::Setup(int H) {
     double scale_c = mh.damping[0].cwiseAbs().maxCoeff();
     for (int c = 0; c < 2; ++c) {
       bool varies = false;
-      for (int m = 1; m <= 2 * H && !varies; ++m) {
+      for (int m = 1; m <= (2 * H + 1) * q && !varies; ++m) {
         varies = mh.stiffness[m].row(c).cwiseAbs().maxCoeff() > kVaryingTol * scale_k ||
                  mh.damping[m].row(c).cwiseAbs().maxCoeff() > kVaryingTol * scale_c;
       }
@@ -171,39 +319,109 @@ HbSetup& HarmonicBalanceSolver::Impl::Setup(int H) {
   s->G.setFromTriplets(tg.begin(), tg.end());
   s->Gt = s->G.transpose();
   s->Gt_d = MatrixX(s->Gt);
-  s->dK.assign(2 * H + 1, MatrixXc::Zero(s->r, s->r));
-  s->dC.assign(2 * H + 1, MatrixXc::Zero(s->r, s->r));
-  for (int m = 1; m <= 2 * H; ++m) {
+  s->dK.assign(2 * H + 2, MatrixXc::Zero(s->r, s->r));
+  s->dC.assign(2 * H + 2, MatrixXc::Zero(s->r, s->r));
+  for (int j = 1; j <= 2 * H + 1; ++j) {
     for (int a = 0; a < s->r; ++a) {
       for (int b = 0; b < s->r; ++b) {
         if (channels[a].first != channels[b].first) continue;  // meshes do not couple
         const MeshHarmonics& mh = s->mesh_harmonics[channels[a].first];
-        s->dK[m](a, b) = mh.stiffness[m](channels[a].second, channels[b].second);
-        s->dC[m](a, b) = mh.damping[m](channels[a].second, channels[b].second);
+        s->dK[j](a, b) = mh.stiffness[j * q](channels[a].second, channels[b].second);
+        s->dC[j](a, b) = mh.damping[j * q](channels[a].second, channels[b].second);
       }
     }
   }
+  GEARDYN_THROW_UNLESS(options.time_samples == 0 || options.time_samples > 2 * s->kmax,
+                       "HbOptions::time_samples: must exceed 2 k_max = "
+                           << 2 * s->kmax << " (the highest kept harmonic of the period, H = " << H
+                           << " mesh orders with their sidebands), got " << options.time_samples);
   s->sampler = std::make_unique<internal::HbOutputSampler>(
-      model, H, internal::ChooseTimeSamples(H, options.time_samples));
+      model, s->kmax, internal::ChooseTimeSamples(s->kmax, options.time_samples));
+  if (!undamped.checked) FindUndampedModes(*s);
   HbSetup& ref = *s;
   setups.emplace(H, std::move(s));
   return ref;
 }
 
-// Block-diagonal LTI harmonics A_k = −k²Ω²M + ikΩC̄ + K̄ solved for [F_k, G_allᵀ]; with the
-// coupling (condensed) the mesh-deflection system (I + R T) D = D⁰ in the real layout, then
-// Q_k = A_k⁻¹ (F_k − G_allᵀ (T D)_k).
+void HarmonicBalanceSolver::Impl::FindUndampedModes(const HbSetup& s) {
+  undamped.checked = true;
+  if (s.n == 0) return;
+  if (s.n > kMaxModalCheckDofs) {
+    undamped.note = "undamped modes not checked (" + std::to_string(s.n) + " DOFs > " +
+                    std::to_string(kMaxModalCheckDofs) + ")";
+    return;
+  }
+  GeneralizedEigenResult eig;
+  try {
+    eig = SolveGeneralizedEigenDense(MatrixX(s.Kbar), MatrixX(s.M));
+  } catch (const InvalidInput& e) {
+    undamped.note = std::string("undamped modes not checked (") + e.what() + ")";
+    return;
+  }
+  if (!eig.summary.ok() || eig.vectors.cols() != eig.eigenvalues.size()) {
+    undamped.note = "undamped modes not checked (mean eigenproblem: " + eig.summary.message + ")";
+    return;
+  }
+  const MatrixX C = MatrixX(s.Cbar);
+  std::vector<int> keep;
+  std::vector<double> f, z;
+  for (Eigen::Index i = 0; i < eig.eigenvalues.size(); ++i) {
+    const double lambda = eig.eigenvalues(i);
+    if (!(lambda > 0.0)) continue;  // rigid-body zero
+    const double w = std::sqrt(lambda);
+    const double zeta = eig.vectors.col(i).dot(C * eig.vectors.col(i)) / (2.0 * w);
+    if (zeta < kUndampedZeta) {
+      keep.push_back(static_cast<int>(i));
+      f.push_back(w / (2.0 * std::numbers::pi));
+      z.push_back(zeta);
+    }
+  }
+  undamped.phi.resize(s.n, static_cast<Eigen::Index>(keep.size()));
+  for (size_t i = 0; i < keep.size(); ++i) undamped.phi.col(i) = eig.vectors.col(keep[i]);
+  undamped.freq_hz = Eigen::Map<const VectorX>(f.data(), static_cast<Eigen::Index>(f.size()));
+  undamped.zeta = Eigen::Map<const VectorX>(z.data(), static_cast<Eigen::Index>(z.size()));
+}
+
+// Share of the alternating response along each undamped mode, in the mass norm: Σ_{k≥1}
+// |φᵀ M Q_k|² / Σ_{k≥1} Q_kᴴ M Q_k (φ M-orthonormal, so the shares of all modes sum to 1).
+void HarmonicBalanceSolver::Impl::CheckUndampedShare(const HbSetup& s, const MatrixXc& Q,
+                                                     double f_m, Summary* out) const {
+  if (undamped.phi.cols() == 0) return;
+  const MatrixXc MQ = s.M.cast<Complex>() * Q.rightCols(Q.cols() - 1);
+  const double total = (Q.rightCols(Q.cols() - 1).conjugate().cwiseProduct(MQ)).sum().real();
+  if (!(total > 0.0)) return;
+  const MatrixXc modal = undamped.phi.transpose().cast<Complex>() * MQ;  // (u × kmax)
+  for (Eigen::Index i = 0; i < undamped.phi.cols(); ++i) {
+    const double share = modal.row(i).squaredNorm() / total;
+    if (share > kUndampedShare) {
+      out->warnings.push_back(
+          "harmonic balance at " + FormatG(f_m) + " Hz: " + FormatG(100.0 * share) +
+          " % of the alternating response (mass-weighted) is in an undamped mode of the mean "
+          "system (" +
+          FormatG(undamped.freq_hz(i)) + " Hz, modal damping ratio " + FormatG(undamped.zeta(i)) +
+          "): its amplitude is set by the truncation, not by damping; add damping (bearings, "
+          "system modal/Rayleigh damping) before trusting it");
+    }
+  }
+}
+
+// Block-diagonal LTI harmonics A_k = −k²Ω²M + ikΩC̄ + K̄ solved for [F_k, G_allᵀ] at every kept
+// k; with the coupling (condensed), per class c the mesh-deflection system (I + R T) D = D⁰ over
+// the two-sided window k ≡ c (mod q), |k| ≤ Hq + c (class 0 in the real layout, stride q;
+// others complex, k < 0 by A_{−k} = conj A_k), then Q_k = A_k⁻¹ (F_k − G_allᵀ (T D)_k).
 MatrixXc HarmonicBalanceSolver::Impl::SolveDecoupledOrCondensed(HbSetup& s, double omega,
                                                                 bool condensed, double* rcond,
                                                                 long* factorizations) {
-  const int H = s.H, n = s.n;
+  const int n = s.n, q = s.q, H = s.H;
   const int r = condensed ? s.r : 0;
-  std::vector<MatrixXc> Y(H + 1);  // n × (1 + r): A_k⁻¹ [F_k, G_allᵀ]
+  const int num = static_cast<int>(s.ks.size());
+  std::vector<MatrixXc> Y(num);  // n × (1 + r): A_k⁻¹ [F_k, G_allᵀ]
   MatrixXc rhs(n, 1 + r);
   *rcond = 1.0;
-  for (int k = 0; k <= H; ++k) {
+  for (int i = 0; i < num; ++i) {
+    const int k = s.ks[i];
     const double kw = k * omega;
-    rhs.col(0) = s.F[k];
+    rhs.col(0) = s.F[i];
     if (r > 0) rhs.rightCols(r) = s.Gt_d.cast<Complex>();
     if (s.dense) {
       MatrixXc A = (k == 0 ? s.Kbar0_d : s.Kbar_d).cast<Complex>();
@@ -211,7 +429,7 @@ MatrixXc HarmonicBalanceSolver::Impl::SolveDecoupledOrCondensed(HbSetup& s, doub
       A += Complex(0.0, kw) * s.Cbar_d.cast<Complex>();
       s.dense_lu.compute(A);
       *rcond = std::min(*rcond, s.dense_lu.rcond());
-      Y[k] = s.dense_lu.solve(rhs);
+      Y[i] = s.dense_lu.solve(rhs);
     } else {
       ComplexSparse A = (k == 0 ? s.Kbar0 : s.Kbar).cast<Complex>() +
                         Complex(-kw * kw, 0.0) * s.M.cast<Complex>() +
@@ -224,59 +442,103 @@ MatrixXc HarmonicBalanceSolver::Impl::SolveDecoupledOrCondensed(HbSetup& s, doub
       s.sparse_lu.factorize(A);
       if (s.sparse_lu.info() != Eigen::Success) {
         *rcond = 0.0;
-        return MatrixXc::Constant(n, H + 1, Complex(NAN, NAN));
+        return MatrixXc::Constant(n, s.kmax + 1, Complex(NAN, NAN));
       }
-      Y[k] = s.sparse_lu.solve(rhs);
+      *rcond = std::min(*rcond, EstimateSparseRcond(A, s.sparse_lu));
+      Y[i] = s.sparse_lu.solve(rhs);
     }
     ++*factorizations;
   }
-  MatrixXc Q(n, H + 1);
+  MatrixXc Q = MatrixXc::Zero(n, s.kmax + 1);
   if (r == 0) {
-    for (int k = 0; k <= H; ++k) Q.col(k) = Y[k].col(0);
+    for (int i = 0; i < num; ++i) Q.col(s.ks[i]) = Y[i].col(0);
     return Q;
   }
-  // Toeplitz block T_{k,j} = ΔK_{k−j} + i jΩ ΔC_{k−j} (ΔX_{−m} = conj ΔX_m).
-  const auto T = [&](int k, int j) -> MatrixXc {
-    const int m = k - j;
-    const MatrixXc& dk = s.dK[std::abs(m)];
-    const MatrixXc& dc = s.dC[std::abs(m)];
-    const Complex iw(0.0, j * omega);
-    return m >= 0 ? MatrixXc(dk + iw * dc) : MatrixXc(dk.conjugate() + iw * dc.conjugate());
+  // Y_k for k < 0 by conjugation (A_{−k} = conj A_k, F_{−k} = conj F_k, G real).
+  const auto y_at = [&](int k) -> MatrixXc {
+    const MatrixXc& y = Y[static_cast<size_t>(s.pos[std::abs(k)])];
+    return k >= 0 ? y : MatrixXc(y.conjugate());
   };
-  const int size = r * (2 * H + 1);
-  MatrixX A = MatrixX::Identity(size, size);
-  std::vector<VectorXc> d0(H + 1);
-  std::vector<MatrixXc> R(H + 1);
-  for (int k = 0; k <= H; ++k) {
-    R[k] = s.G.cast<Complex>() * Y[k].rightCols(r);
-    d0[k] = s.G.cast<Complex>() * Y[k].col(0);
-  }
-  for (int k = 0; k <= H; ++k) {
-    for (int j = std::max(-H, k - 2 * H); j <= H; ++j) {
-      internal::AddRealBlock(r, k, j, R[k] * T(k, j), &A);
+  // Toeplitz block T_{k,j} = ΔK_{k−j} + i jΩ ΔC_{k−j}.
+  const auto T = [&](int k, int j) -> MatrixXc {
+    return s.DeltaAt(s.dK, k - j) + Complex(0.0, j * omega) * s.DeltaAt(s.dC, k - j);
+  };
+  const MatrixXc Gc = s.G.cast<Complex>();
+  for (int c : s.classes) {
+    if (c == 0) {
+      // Real layout over k = jq, j = 0 … H (Q_{−k} = conj Q_k), as for P = 1 with stride q.
+      const int size = r * (2 * H + 1);
+      MatrixX A = MatrixX::Identity(size, size);
+      std::vector<VectorXc> d0(H + 1);
+      std::vector<MatrixXc> R(H + 1);
+      for (int j = 0; j <= H; ++j) {
+        const MatrixXc y = y_at(j * q);
+        R[j] = Gc * y.rightCols(r);
+        d0[j] = Gc * y.col(0);
+      }
+      for (int k = 0; k <= H; ++k) {
+        for (int j = std::max(-H, k - 2 * H); j <= H; ++j) {
+          internal::AddRealBlock(r, k, j, R[k] * T(k * q, j * q), &A);
+        }
+      }
+      Eigen::PartialPivLU<MatrixX> lu(A);
+      *rcond = std::min(*rcond, lu.rcond());
+      ++*factorizations;
+      const MatrixXc D = internal::FromRealLayout(lu.solve(internal::ToRealLayout(d0)), r, H);
+      for (int k = 0; k <= H; ++k) {
+        VectorXc td = VectorXc::Zero(r);
+        for (int j = std::max(-H, k - 2 * H); j <= H; ++j) {
+          const VectorXc dj = j >= 0 ? VectorXc(D.col(j)) : VectorXc(D.col(-j).conjugate());
+          td += T(k * q, j * q) * dj;
+        }
+        const MatrixXc y = y_at(k * q);
+        Q.col(k * q) = y.col(0) - y.rightCols(r) * td;
+      }
+      continue;
     }
-  }
-  Eigen::PartialPivLU<MatrixX> lu(A);
-  *rcond = std::min(*rcond, lu.rcond());
-  ++*factorizations;
-  const MatrixXc D = internal::FromRealLayout(lu.solve(internal::ToRealLayout(d0)), r, H);
-  for (int k = 0; k <= H; ++k) {
-    VectorXc td = VectorXc::Zero(r);
-    for (int j = std::max(-H, k - 2 * H); j <= H; ++j) {
-      const VectorXc dj = j >= 0 ? VectorXc(D.col(j)) : VectorXc(D.col(-j).conjugate());
-      td += T(k, j) * dj;
+    // Two-sided window k = c + jq, |k| ≤ Hq + c: j = −H … H (and j = −H−1 when c = q/2).
+    std::vector<int> window;
+    for (int j = -H - 1; j <= H; ++j) {
+      const int k = c + j * q;
+      if (std::abs(k) <= H * q + c) window.push_back(k);
     }
-    Q.col(k) = Y[k].col(0) - Y[k].rightCols(r) * td;
+    const int w = static_cast<int>(window.size());
+    MatrixXc A = MatrixXc::Identity(r * w, r * w);
+    VectorXc d0(r * w);
+    std::vector<MatrixXc> ys(w);
+    for (int a = 0; a < w; ++a) {
+      ys[a] = y_at(window[a]);
+      const MatrixXc R = Gc * ys[a].rightCols(r);
+      d0.segment(a * r, r) = Gc * ys[a].col(0);
+      for (int b = 0; b < w; ++b) {
+        A.block(a * r, b * r, r, r) += R * T(window[a], window[b]);
+      }
+    }
+    Eigen::PartialPivLU<MatrixXc> lu(A);
+    *rcond = std::min(*rcond, lu.rcond());
+    ++*factorizations;
+    const VectorXc D = lu.solve(d0);
+    for (int a = 0; a < w; ++a) {
+      VectorXc td = VectorXc::Zero(r);
+      for (int b = 0; b < w; ++b) td += T(window[a], window[b]) * D.segment(b * r, r);
+      const VectorXc qk = ys[a].col(0) - ys[a].rightCols(r) * td;
+      if (window[a] >= 0) {
+        Q.col(window[a]) = qk;
+      } else {
+        Q.col(-window[a]) = qk.conjugate();  // Q_{−k} = conj Q_k (class q − c)
+      }
+    }
   }
   return Q;
 }
 
 MatrixXc HarmonicBalanceSolver::Impl::SolveDirect(HbSetup& s, double omega, double* rcond) {
+  // Every harmonic 0 … kmax of Ω (a superset of the kept ones: same answer up to truncation).
   const LinearHbSystem sys = MakeLinearHbSystem(
-      model, s.H, omega * static_cast<double>(model.period_meshes()) / (2.0 * std::numbers::pi));
+      model, s.kmax, omega * static_cast<double>(model.period_meshes()) / (2.0 * std::numbers::pi));
   Eigen::PartialPivLU<MatrixX> lu(sys.matrix);
   *rcond = lu.rcond();
-  return internal::FromRealLayout(lu.solve(sys.rhs), s.n, s.H);
+  return internal::FromRealLayout(lu.solve(sys.rhs), s.n, s.kmax);
 }
 
 HbResult HarmonicBalanceSolver::Impl::SolveFixed(int H, double f_m) {
@@ -285,6 +547,8 @@ HbResult HarmonicBalanceSolver::Impl::SolveFixed(int H, double f_m) {
   result.mesh_frequency_hz = f_m;
   result.period_meshes = model.period_meshes();
   result.harmonics = H;
+  result.highest_harmonic = s.kmax;
+  result.kept_harmonics = s.ks;
   const double omega = 2.0 * std::numbers::pi * f_m / static_cast<double>(result.period_meshes);
   HbMethod method = options.method;
   if (method == HbMethod::kAuto) method = s.r == 0 ? HbMethod::kDecoupled : HbMethod::kCondensed;
@@ -298,7 +562,7 @@ HbResult HarmonicBalanceSolver::Impl::SolveFixed(int H, double f_m) {
   if (method == HbMethod::kDirect) {
     Q = SolveDirect(s, omega, &rcond);
     factorizations = 1;
-    result.summary.counters["unknowns"] = static_cast<long>(s.n) * (2 * H + 1);
+    result.summary.counters["unknowns"] = static_cast<long>(s.n) * (2 * s.kmax + 1);
   } else {
     Q = SolveDecoupledOrCondensed(s, omega, method == HbMethod::kCondensed, &rcond,
                                   &factorizations);
@@ -307,12 +571,16 @@ HbResult HarmonicBalanceSolver::Impl::SolveFixed(int H, double f_m) {
   }
   result.summary.counters["factorizations"] = factorizations;
   result.summary.counters["harmonics"] = H;
+  result.summary.counters["kept_harmonics"] = static_cast<long>(s.ks.size());
+  result.summary.counters["forcing_classes"] = static_cast<long>(s.classes.size());
   result.summary.warnings = warnings;
+  if (!undamped.note.empty()) result.summary.warnings.push_back(undamped.note);
   if (s.unbalanced > 1e-8) {
     result.summary.warnings.push_back(
         "the mean load has a part along the rigid-body modes (relative size " +
         std::to_string(s.unbalanced) + "); removed (the supports cannot react it)");
   }
+  result.reciprocal_condition = rcond;
   if (!Q.allFinite()) {
     result.summary.status = Status::kNumericalIssue;
     result.summary.message = "harmonic balance: the solve failed (singular operator at " +
@@ -324,18 +592,28 @@ HbResult HarmonicBalanceSolver::Impl::SolveFixed(int H, double f_m) {
     result.summary.message =
         "harmonic balance: the operator is singular to working precision "
         "(estimated 1/cond " +
-        std::to_string(rcond) + "): an undamped resonance at " + std::to_string(f_m) + " Hz?";
+        FormatG(rcond) + "): an undamped resonance at " + std::to_string(f_m) + " Hz?";
+  } else if (rcond < kWarnRcond) {
+    result.summary.warnings.push_back("harmonic balance at " + FormatG(f_m) +
+                                      " Hz: ill-conditioned solve (estimated 1/cond " +
+                                      FormatG(rcond) + "): expect to lose about " +
+                                      FormatG(std::round(-std::log10(rcond))) + " digits");
   }
   const double max_rms =
       s.sampler->Evaluate(Q, omega, options.compute_forces, options.keep_harmonics, &result);
-  // Fixed-H estimate: RMS of the DTE harmonics in (3H/4, H] relative to the largest RMS DTE.
+  // Fixed-H estimate: RMS of the DTE harmonics above 3/4 of the kept mesh orders, relative to
+  // the largest RMS DTE.
   double top = 0.0;
+  const int first = (3 * H / 4) * s.q + 1;
   for (const HbMeshOutput& m : result.meshes) {
     double e2 = 0.0;
-    for (int h = 3 * H / 4 + 1; h <= H; ++h) e2 += 0.5 * m.dte_amplitudes(h) * m.dte_amplitudes(h);
+    for (int h = first; h <= s.kmax && h < m.dte_amplitudes.size(); ++h) {
+      e2 += 0.5 * m.dte_amplitudes(h) * m.dte_amplitudes(h);
+    }
     top = std::max(top, std::sqrt(e2));
   }
   result.summary.error_estimate = max_rms > 0.0 ? top / max_rms : 0.0;
+  CheckUndampedShare(s, Q, f_m, &result.summary);
   return result;
 }
 
@@ -346,6 +624,15 @@ HarmonicBalanceSolver::HarmonicBalanceSolver(const SystemModel& model, const HbO
   impl_->model = model;
   impl_->options = options;
   impl_->warnings = internal::CheckLinearHbModel(model);
+  const int first = options.harmonics > 0 ? options.harmonics : options.min_harmonics;
+  const double bytes = impl_->EstimateBytes(first);
+  GEARDYN_THROW_UNLESS(
+      bytes <= kMaxHbBytes,
+      "HbOptions::harmonics: H = "
+          << first << " over a period of " << model.period_meshes() << " mesh cycles (P/P_K = "
+          << impl_->ClassModulus() << " sidebands per mesh order) would need about "
+          << FormatG(bytes / 1e9) << " GB (limit " << FormatG(kMaxHbBytes / 1e9)
+          << " GB); lower H, or remove the tooth errors that make the hunting period");
 }
 
 HarmonicBalanceSolver::~HarmonicBalanceSolver() = default;
@@ -366,8 +653,16 @@ HbResult HarmonicBalanceSolver::Solve(double mesh_frequency_hz) {
       const int next = std::min(2 * H, o.max_harmonics);
       if (next == H) {
         result.summary.status = Status::kToleranceNotMet;
-        result.summary.message = "harmonic balance: tolerance " + std::to_string(o.tolerance) +
+        result.summary.message = "harmonic balance: tolerance " + FormatG(o.tolerance) +
                                  " not met with max_harmonics = " + std::to_string(H);
+        break;
+      }
+      if (impl_->EstimateBytes(next) > kMaxHbBytes) {
+        result.summary.status = Status::kToleranceNotMet;
+        result.summary.message = "harmonic balance: tolerance " + FormatG(o.tolerance) +
+                                 " not met with H = " + std::to_string(H) +
+                                 "; H = " + std::to_string(next) + " would need about " +
+                                 FormatG(impl_->EstimateBytes(next) / 1e9) + " GB";
         break;
       }
       result = impl_->SolveFixed(next, mesh_frequency_hz);
@@ -418,7 +713,15 @@ HbSweepResult SweepHarmonicBalance(const SystemModel& model,
     }
     if (progress) progress(i + 1, total);
   }
-  if (!sweep.points.empty()) sweep.summary.warnings = sweep.points.front().summary.warnings;
+  // Every distinct warning of the points, in order of first appearance.
+  for (const HbResult& point : sweep.points) {
+    for (const std::string& w : point.summary.warnings) {
+      if (std::find(sweep.summary.warnings.begin(), sweep.summary.warnings.end(), w) ==
+          sweep.summary.warnings.end()) {
+        sweep.summary.warnings.push_back(w);
+      }
+    }
+  }
   sweep.summary.counters["points"] = total;
   sweep.summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -1,6 +1,7 @@
 // The full dense linear HB system in the real layout (MakeLinearHbSystem, the kDirect path),
 // option validation and names (harmonic_balance.hpp).
 #include <cmath>
+#include <iomanip>
 #include <numbers>
 #include <sstream>
 
@@ -33,11 +34,18 @@ bool HbOptions::IsValid(std::string* why) const {
     msg << "HbOptions::harmonics: must be >= 0 (0 = from the tolerance), got " << harmonics;
   } else if (harmonics == 0 && !(std::isfinite(tolerance) && tolerance > 0.0)) {
     msg << "HbOptions::tolerance: must be finite and > 0, got " << tolerance;
+  } else if (harmonics > kMaxHbHarmonics) {
+    msg << "HbOptions::harmonics: must be <= " << kMaxHbHarmonics << ", got " << harmonics
+        << " (the condensed coupling of one mesh in one forcing class alone would take "
+           "(2(2H+1))^2 x 16 B = "
+        << std::setprecision(3) << 64.0 * std::pow(2.0 * harmonics + 1.0, 2) / 1e9 << " GB)";
   } else if (min_harmonics < 1) {
     msg << "HbOptions::min_harmonics: must be >= 1, got " << min_harmonics;
   } else if (max_harmonics < min_harmonics) {
     msg << "HbOptions::max_harmonics: must be >= min_harmonics = " << min_harmonics << ", got "
         << max_harmonics;
+  } else if (max_harmonics > kMaxHbHarmonics) {
+    msg << "HbOptions::max_harmonics: must be <= " << kMaxHbHarmonics << ", got " << max_harmonics;
   } else if (time_samples < 0) {
     msg << "HbOptions::time_samples: must be >= 0 (0 = automatic), got " << time_samples;
   } else if (time_samples > 0 && time_samples <= 2 * (harmonics > 0 ? harmonics : max_harmonics)) {

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <variant>
 
 #include "geardyn/common/check.hpp"
@@ -101,6 +102,16 @@ std::vector<std::string> CheckLinearHbModel(const SystemModel& model) {
                mesh.core);
   }
   return warnings;
+}
+
+std::int64_t OperatorPeriodMeshes(const SystemModel& model) {
+  std::int64_t p = 1;
+  for (const SystemMesh& mesh : model.meshes()) {
+    const auto* linear = std::get_if<LinearMeshCore>(&mesh.core);
+    p = std::lcm(p,
+                 linear != nullptr ? PeriodMeshes(linear->stiffness()) : PeriodMeshes(mesh.core));
+  }
+  return p;
 }
 
 int ChooseTimeSamples(int harmonics, int requested) {

@@ -22,7 +22,9 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 
 #include "geardyn/analyses/nonlinear_hb.hpp"
 #include "geardyn/common/check.hpp"
@@ -324,6 +326,18 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
     curve.summary.warnings.push_back("max_points reached before omega_end");
   }
   internal::FindFoldsAndJumps(curve, steps, so);
+  // The worst conditioning of the condensation along the curve, once.
+  const NhbPoint* worst = nullptr;
+  for (const NhbPoint& pt : curve.points) {
+    if (worst == nullptr || pt.condensation_rcond < worst->condensation_rcond) worst = &pt;
+  }
+  if (worst != nullptr && worst->condensation_rcond < kNhbIllConditioned) {
+    std::ostringstream w;
+    w << std::setprecision(3) << "nonlinear HB: ill-conditioned condensation (estimated 1/cond "
+      << "down to " << worst->condensation_rcond << " at Omega = " << worst->omega
+      << " rad/s): an undamped linear resonance? Expect lost digits";
+    curve.summary.warnings.push_back(w.str());
+  }
   double err = 0.0;
   for (const NhbPoint& pt : curve.points) err = std::max(err, pt.error_estimate);
   curve.summary.error_estimate = err;

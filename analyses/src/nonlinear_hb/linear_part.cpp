@@ -1,8 +1,10 @@
 /// @file
 /// @brief Condensed linear part of the nonlinear HB per harmonic (see nonlinear_hb.hpp):
 /// Z_k = (P D_k⁻¹ Pᵀ)⁻¹, F̃_k = Z_k P D_k⁻¹ F_k with D_k = −k²ω²M + ikωC + K, ω = Ω/p, and their
-/// analytic Ω-derivatives (dD_k/dΩ = (−2k²ωM + ikC)/p; dZ = Z P D⁻¹ dD D⁻¹ Pᵀ Z).
+/// analytic Ω-derivatives (dD_k/dΩ = (−2k²ωM + ikC)/p; dZ = Z P D⁻¹ dD D⁻¹ Pᵀ Z). The smallest
+/// estimated reciprocal condition number of the two inversions is kept (linear_rcond).
 #include <Eigen/LU>
+#include <algorithm>
 #include <complex>
 
 #include "nonlinear_hb/solver_impl.hpp"
@@ -15,6 +17,7 @@ void NhbSolver::Impl::UpdateLinear(double omega) {
   const double w = omega / p;
   const std::complex<double> I(0.0, 1.0);
   double fmax = 0.0;
+  linear_rcond = 1.0;
   for (int k = 0; k <= H; ++k) {
     const double kk = k;
     if (uncondensed) {
@@ -34,7 +37,10 @@ void NhbSolver::Impl::UpdateLinear(double omega) {
       const MatrixXc Pc = problem.projection.cast<std::complex<double>>();
       Eigen::PartialPivLU<MatrixXc> dlu(D);
       const MatrixXc Y = dlu.solve(Pc.transpose());  // D⁻¹ Pᵀ, N×n
-      Z[k] = (Pc * Y).inverse();
+      const Eigen::PartialPivLU<MatrixXc> zlu(Pc * Y);
+      Z[k] = zlu.inverse();
+      // Both inversions of the condensation: D_k and P D_k⁻¹ Pᵀ (Eigen's 1-norm estimates).
+      linear_rcond = std::min({linear_rcond, dlu.rcond(), zlu.rcond()});
       const VectorXc wv = dlu.solve(Fk);
       F[k] = Z[k] * (Pc * wv);
       dZ[k] = Z[k] * (Pc * dlu.solve(dD * Y)) * Z[k];

@@ -146,6 +146,8 @@ void NhbSolver::Describe(const VectorX& x, double omega, NhbPoint& point) {
   Impl& s = *impl_;
   GEARDYN_CHECK_SIZE(x.size(), s.m, "x");
   s.Synthesize(x);
+  s.UpdateLinear(omega);
+  point.condensation_rcond = s.linear_rcond;
   point.omega = omega;
   point.harmonics.resize(s.n, s.H + 1);
   point.mean.resize(s.n);

@@ -4,6 +4,8 @@
 /// solution, zero-padded).
 #include <chrono>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 #include "geardyn/analyses/nonlinear_hb.hpp"
 #include "geardyn/common/check.hpp"
@@ -68,6 +70,14 @@ NhbSolveResult SolveNonlinearHarmonicBalance(const NhbProblem& problem, double o
     result.summary.status = result.point.status;
     result.summary.message =
         "Newton did not converge (‖R‖∞ = " + std::to_string(result.point.residual_norm) + ")";
+  }
+  if (result.point.condensation_rcond < kNhbIllConditioned) {
+    std::ostringstream w;
+    w << std::setprecision(3)
+      << "nonlinear HB: ill-conditioned condensation at Omega = " << result.point.omega
+      << " rad/s (estimated 1/cond " << result.point.condensation_rcond
+      << " of D_k or P D_k^-1 P^T): an undamped linear resonance? Expect lost digits";
+    result.summary.warnings.push_back(w.str());
   }
   result.summary.counters["newton_iterations"] = newton;
   result.summary.counters["harmonics"] = result.harmonics_used;

@@ -64,6 +64,8 @@ struct NhbSolver::Impl {
   std::vector<MatrixXc> Z, dZ;              ///< k = 0..H.
   std::vector<VectorXc> F, dF;              ///< k = 0..H.
   double force_scale = 1.0;  ///< 1 + max ‖F̃_k‖∞ + ‖f₀‖∞ (Newton tolerance scale).
+  /// Smallest estimated 1/cond of D_k and P D_k⁻¹ Pᵀ over k at cached_omega (1 uncondensed).
+  double linear_rcond = 1.0;
 
   // Newton scratch.
   MatrixX J;

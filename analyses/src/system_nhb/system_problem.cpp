@@ -4,13 +4,13 @@
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <sstream>
 #include <variant>
 
 #include "geardyn/analyses/system_nonlinear_hb.hpp"
 #include "geardyn/common/check.hpp"
 #include "geardyn/numerics/rigid_modes.hpp"
+#include "geardyn/system/system_harmonics.hpp"
 #include "geardyn/system/system_steps.hpp"
 #include "geardyn/system/workspace.hpp"
 #include "system_nhb/mesh_force_law.hpp"
@@ -35,18 +35,12 @@ int CoordinateCount(const SystemMesh& mesh, const VectorX& zeta_row) {
   return core.level() == MeshCoreLevel::kBlankenshipSingh && zeta_moves ? 2 : 1;
 }
 
-/// θ-mean of the assembled damping C(θ) on 256·P samples (exact for piecewise-constant and
-/// low-order Fourier coefficients up to the rectangle rule).
+/// θ-mean of the damping C(θ) = C0 + Σ Gᵀ C2(θ_k) G from the mesh harmonics m = 0
+/// (ExpandSystemHarmonics): exact closed form for stepwise cores, the trigonometric
+/// interpolant's mean on ≥ 256 samples per core period otherwise — no dense assembly per sample,
+/// and over the core's own period, not the hunting period of the forcing.
 MatrixX MeanDamping(const SystemModel& model) {
-  SystemWorkspace ws(model, StorageKind::kDense);
-  const int samples = 256 * static_cast<int>(model.period_meshes());
-  MatrixX mean = MatrixX::Zero(model.num_dofs(), model.num_dofs());
-  for (int s = 0; s < samples; ++s) {
-    mean += AssembleDamping(
-        model, ws,
-        2.0 * std::numbers::pi * static_cast<double>(model.period_meshes()) * s / samples);
-  }
-  return mean / samples;
+  return ExpandSystemHarmonics(model, 0).damping[0].real();
 }
 
 }  // namespace

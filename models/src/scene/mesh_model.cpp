@@ -158,7 +158,7 @@ int MeshDriveSign(const Scene& scene, const MeshDef& mesh, std::vector<std::stri
   return pinion_torque > 0.0 ? 1 : -1;
 }
 
-BuiltMeshCore BuildMeshCore(const Scene& scene, const MeshDef& mesh) {
+BuiltMeshCore BuildMeshCore(const Scene& scene, const MeshDef& mesh, bool transmission_error) {
   const MeshModelDef& model = mesh.model;
   std::vector<std::string> warnings;
   const int drive_sign = MeshDriveSign(scene, mesh, &warnings);
@@ -178,7 +178,9 @@ BuiltMeshCore BuildMeshCore(const Scene& scene, const MeshDef& mesh) {
   ToothErrors errors = model.errors;
   if (errors.pinion_teeth == 0) errors.pinion_teeth = scene.gear(mesh.pinion).blank.teeth;
   if (errors.gear_teeth == 0) errors.gear_teeth = scene.gear(mesh.gear).blank.teeth;
-  source.transmission_error = MakeTransmissionError(source.contact_lines, model, errors);
+  if (transmission_error) {
+    source.transmission_error = MakeTransmissionError(source.contact_lines, model, errors);
+  }
 
   MeshCoreOptions options = model.core_options;
   options.level = model.level;

@@ -13,6 +13,7 @@
 #include "geardyn/analyses/harmonic_balance.hpp"
 #include "geardyn/analyses/system_nonlinear_hb.hpp"
 #include "geardyn/common/errors.hpp"
+#include "geardyn/system/workspace.hpp"
 #include "support/expect_throws.hpp"
 
 namespace geardyn {
@@ -22,6 +23,28 @@ SystemNhbOptions Options(int harmonics) {
   SystemNhbOptions o;
   o.hb.harmonics = harmonics;
   return o;
+}
+
+// Issue 12: the mean damping of the linear part is the exact θ-mean (mesh harmonic 0) instead
+// of a 256·P-point rectangle rule with a dense assembly per sample. On the rig (spur slices: C2
+// = c_m K2/K is constant in θ, so the rectangle rule is exact too) both must agree to round-off;
+// the reference is the old path, recomputed here with AssembleDamping.
+TEST(SystemNonlinearHb, MeanDampingEqualsTheRectangleRuleOnTheRig) {
+  const SystemModel model = testing::KbRigSliceModel();
+  const SystemNhbProblem sys = MakeSystemNhbProblem(model);
+  SystemWorkspace ws(model, StorageKind::kDense);
+  const int samples = 256 * static_cast<int>(model.period_meshes());
+  MatrixX mean = MatrixX::Zero(model.num_dofs(), model.num_dofs());
+  for (int s = 0; s < samples; ++s) {
+    mean += AssembleDamping(
+        model, ws,
+        2.0 * std::numbers::pi * static_cast<double>(model.period_meshes()) * s / samples);
+  }
+  mean /= samples;
+  MatrixX reference = sys.reduction.transpose() * mean * sys.reduction;
+  reference = 0.5 * (reference + reference.transpose()).eval();
+  ASSERT_GT(reference.norm(), 0.0);
+  EXPECT_LE((sys.problem.damping - reference).norm(), 1e-12 * reference.norm());
 }
 
 // In full contact the slice force is K2(θ)δ with the all-loaded channels: the linear HB of the

@@ -11,15 +11,31 @@
 /// **Harmonic conventions** (shared with the nonlinear engine; system_harmonics.hpp):
 /// * K(θ) = Σ_m K_m e^{imθ/P}, C(θ) = Σ_m C_m e^{imθ/P}, f(θ) = Σ_m f_m e^{imθ/P}, X_{−m} =
 ///   conj(X_m) (ExpandSystemHarmonics / ExpandMeshHarmonics);
-/// * q(t) = Σ_{k=−H..H} Q_k e^{ikΩt}, Q_{−k} = conj(Q_k) (real response); H counts harmonics of
-///   Ω = ω_m/P (H harmonics of the mesh frequency when P = 1). The amplitude of harmonic k ≥ 1
-///   is 2|Q_k| and q = Q_0 + 2 Σ_{k≥1} (Re Q_k cos kΩt − Im Q_k sin kΩt);
+/// * q(t) = Σ_k Q_k e^{ikΩt} over the kept harmonics k (see "Harmonic set"), Q_{−k} = conj(Q_k)
+///   (real response). The amplitude of harmonic k ≥ 1 is 2|Q_k| and q = Q_0 + 2 Σ_{k≥1} (Re Q_k
+///   cos kΩt − Im Q_k sin kΩt);
 /// * harmonic k of the equation (C(θ) q̇ couples with the velocity of the harmonic it acts on):
 ///   \f[ −k²Ω² M Q_k + \sum_{j=−H}^{H} \big(K_{k−j} + i jΩ\, C_{k−j}\big) Q_j = F_k,
 ///       \quad k = 0 … H; \f]
 /// * real layout of the unknowns and equations (LinearHbSystem, MakeLinearHbSystem):
 ///   x = [Re Q_0; Re Q_1; Im Q_1; …; Re Q_H; Im Q_H] ((2H+1)·n reals), rows in the same order
 ///   (real part of equation 0, then real and imaginary parts of equations 1 … H).
+///
+/// **Harmonic set** (why H counts mesh orders, not harmonics of Ω). K(θ) and C(θ) repeat every
+/// P_K meshes (the lcm of the stiffness channels' periods, usually 1); only the forcing K2 ε
+/// repeats over the hunting period P (pitch errors, runout). So K_m = C_m = 0 unless q = P/P_K
+/// divides m, and the equation of harmonic k couples only harmonics j ≡ k (mod q): the harmonics
+/// split into classes c = ±k mod q, each solved on its own. HbOptions::harmonics = H counts
+/// harmonics of the operator frequency ω_m/P_K (mesh orders when P_K = 1); the kept one-sided
+/// harmonics are k = jq ± c, j = 0 … H, for c = 0 (the mean and the mesh orders, always) and for
+/// every class c ∈ (0, q/2] whose load harmonics up to Hq + q/2 exceed 1e-12 of the largest (a
+/// runout of a z-tooth gear: c = P/z, its sidebands; pitch errors: many classes). Within its class
+/// a kept harmonic couples through every K_{jq}, |j| ≤ 2H+1, exactly as the P = 1 problem does, so
+/// the truncation error is that of H mesh orders, whatever P. (The former count, H harmonics of
+/// ω_m/P, dropped the mesh frequency itself whenever H < P.) HbResult::kept_harmonics lists
+/// them, highest_harmonic is the largest. The working memory grows with (2H+1)·q; an H over a
+/// long hunting period that would need more than 2 GB is refused (the constructor) or ends the
+/// tolerance search (kToleranceNotMet).
 ///
 /// **Rigid-body modes.** A free gear train (no support about the axes) has K̄ r = 0; since K(θ) is
 /// PSD, K(θ) r = 0 for every θ and the mean part of Q_0 along r is undetermined. The solver fixes
@@ -43,15 +59,24 @@
 /// **Accuracy knob.** HbOptions::harmonics = H, or 0 and a tolerance: H = min_harmonics,
 /// 2·min_harmonics, … until the change of the RMS DTE (max over meshes, relative to the largest
 /// RMS DTE) between H/2 and H is at most `tolerance`; the result reports H and that change as
-/// summary.error_estimate. With a fixed H the estimate is the RMS of the DTE harmonics in the top
-/// quarter (3H/4, H] relative to the largest RMS DTE (the size of the content near the
-/// truncation). Both are estimates, not bounds.
+/// summary.error_estimate. With a fixed H the estimate is the RMS of the DTE harmonics above
+/// the mesh order ⌊3H/4⌋ (with their sidebands) relative to the largest RMS DTE (the size of the
+/// content near the truncation). Both are estimates, not bounds. H ≤ kMaxHbHarmonics.
+///
+/// **Diagnostics** (Summary): every LU's reciprocal condition number is estimated (dense:
+/// Eigen's rcond(); sparse: Hager–Higham 1-norm estimate with A and Aᴴ solves); the smallest is
+/// HbResult::reciprocal_condition; below 1e-14 the status is kNumericalIssue, below 1e-10 a
+/// warning gives the digits lost. **Undamped modes:** the modes of the mean system (K̄, M)
+/// (dense, n ≤ 3000) whose modal damping ratio φᵀC̄φ/(2ω) is below 1e-6 are found once; when
+/// one of them carries more than 10 % of the alternating response (Σ_{k≥1} |φᵀMQ_k|² over
+/// Σ_{k≥1} Q_kᴴMQ_k) a warning names it: such a response is bounded only by the truncation and
+/// the LTV coupling, not by damping (e.g. the undamped bearing modes of the built-in rig).
 ///
 /// **Outputs** (from S time samples of the synthesized response per system period, FFTW c2r):
 /// per mesh DTE (probes.hpp: δ_η − ε_η) mean, RMS of the alternating part, peak-to-peak and the
-/// amplitudes of its harmonics 0 … H (FFT of the samples), the mesh force F_η = row η of
-/// K2(δ − ε) + C2 δ̇ (mean, RMS, peak-to-peak); per element the mean and RMS (alternating) of the
-/// six force components on its first body's coordinates (CalcElementForce).
+/// amplitudes of its harmonics 0 … highest_harmonic of Ω (FFT of the samples), the mesh force F_η =
+/// row η of K2(δ − ε) + C2 δ̇ (mean, RMS, peak-to-peak); per element the mean and RMS (alternating)
+/// of the six force components on its first body's coordinates (CalcElementForce).
 ///
 /// **Slice cores** are used through their all-loaded linearization (workspace.hpp), with a
 /// warning; a NonlinearMeshCore is rejected (use the nonlinear engine). Reentrant; one
@@ -76,19 +101,25 @@ enum class HbMethod { kAuto, kDecoupled, kCondensed, kDirect };
 /// "auto", "decoupled", "condensed", "direct".
 const char* ToString(HbMethod method);
 
+/// Largest H (harmonics, max_harmonics) of HbOptions: the condensed coupling of one mesh in one
+/// forcing class alone takes (2(2H+1))² complex entries, 1.1 GB at H = 2048.
+inline constexpr int kMaxHbHarmonics = 2048;
+
 /// @brief Options of the linear harmonic balance.
 struct HbOptions {
   HbMethod method = HbMethod::kAuto;
-  /// H ≥ 1: harmonics of Ω = ω_m/P kept; 0 = chosen from `tolerance`.
+  /// H ≥ 1: harmonics of the operator frequency ω_m/P_K kept (mesh orders when P_K = 1), each
+  /// with its forcing sidebands (@file "Harmonic set"); 0 = chosen from `tolerance`.
   int harmonics = 0;
   /// With harmonics = 0: accepted relative change of the RMS DTE between H/2 and H [-], > 0.
+  /// Not used with harmonics > 0.
   double tolerance = 1e-4;
   /// First H of the tolerance search (≥ 1).
   int min_harmonics = 8;
   /// Largest H of the tolerance search (≥ min_harmonics); reaching it gives kToleranceNotMet.
   int max_harmonics = 512;
   /// S time samples per system period for the outputs; 0 = the smallest power of two ≥
-  /// max(256, 8(H+1)). Must exceed 2H when given.
+  /// max(256, 8(k_max+1)), k_max = highest_harmonic. Must exceed 2·k_max when given.
   int time_samples = 0;
   /// Compute mesh forces and element forces (DTE always).
   bool compute_forces = true;
@@ -101,12 +132,12 @@ struct HbOptions {
 /// @brief Steady-state outputs of one mesh.
 struct HbMeshOutput {
   std::string name;
-  double mean_dte = 0.0;            ///< θ-mean of the DTE [m]
-  double rms_dte = 0.0;             ///< RMS of DTE − mean [m]
-  double peak_to_peak_dte = 0.0;    ///< max − min of the DTE samples [m]
-  VectorX dte_amplitudes;           ///< (H+1) |mean|, then 2|Y_k| of harmonic k = 1 … H [m]
-  double mean_force = 0.0;          ///< θ-mean of F_η [N] (> 0: compression)
-  double rms_force = 0.0;           ///< RMS of F_η − mean [N]
+  double mean_dte = 0.0;          ///< θ-mean of the DTE [m]
+  double rms_dte = 0.0;           ///< RMS of DTE − mean [m]
+  double peak_to_peak_dte = 0.0;  ///< max − min of the DTE samples [m]
+  VectorX dte_amplitudes;   ///< (k_max+1) |mean|, then 2|Y_k| of harmonic k of Ω = ω_m/P [m]
+  double mean_force = 0.0;  ///< θ-mean of F_η [N] (> 0: compression)
+  double rms_force = 0.0;   ///< RMS of F_η − mean [N]
   double peak_to_peak_force = 0.0;  ///< [N]
 };
 
@@ -123,12 +154,16 @@ struct HbResult {
   HbMethod method_used = HbMethod::kAuto;
   double mesh_frequency_hz = 0.0;         ///< f_m [Hz]
   std::int64_t period_meshes = 1;         ///< P [-]
-  int harmonics = 0;                      ///< H used
+  int harmonics = 0;                      ///< H used (mesh orders when P_K = 1)
+  int highest_harmonic = 0;               ///< k_max: the largest kept harmonic of Ω = ω_m/P
+  std::vector<int> kept_harmonics;        ///< the kept one-sided k (of Ω), ascending
+  double reciprocal_condition = 1.0;      ///< smallest estimated 1/cond of the LU solves
   int time_samples = 0;                   ///< S used
   std::vector<HbMeshOutput> meshes;       ///< per mesh, model order
   std::vector<HbElementOutput> elements;  ///< per element (empty unless compute_forces)
-  MatrixXc response_harmonics;            ///< (n × (H+1)) Q_k [m, rad] when keep_harmonics
-  MatrixX dte_samples;  ///< (meshes × S) DTE at θ_s = 2πP s/S [m] when keep_harmonics
+  MatrixXc
+      response_harmonics;  ///< (n × (k_max+1)) Q_k [m, rad] when keep_harmonics (0 if not kept)
+  MatrixX dte_samples;     ///< (meshes × S) DTE at θ_s = 2πP s/S [m] when keep_harmonics
 };
 
 /// @brief The full linear HB system in the real layout (see the @file): A x = b.
@@ -150,8 +185,9 @@ using HbProgress = std::function<void(int done, int total)>;
 /// plans, sparse patterns) across frequencies (architecture §3.3 "solver object").
 class HarmonicBalanceSolver {
  public:
-  /// @throws InvalidInput on invalid options, a NonlinearMeshCore, or meshes at different
-  ///   frequencies (CheckSingleMeshFrequency).
+  /// @throws InvalidInput on invalid options, a NonlinearMeshCore, meshes at different
+  ///   frequencies (CheckSingleMeshFrequency), or an H whose working memory over the model's
+  ///   hunting period would exceed 2 GB (the message gives the estimate).
   HarmonicBalanceSolver(const SystemModel& model, const HbOptions& options);
   ~HarmonicBalanceSolver();
   HarmonicBalanceSolver(const HarmonicBalanceSolver&) = delete;

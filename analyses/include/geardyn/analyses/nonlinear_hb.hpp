@@ -193,8 +193,15 @@ struct NhbPoint {
   double max_multiplier = 0;  ///< max |μ| (0 when stability was not computed).
   int newton_iterations = 0;  ///< Newton iterations of this point.
   double residual_norm = 0;   ///< Final ‖R‖∞.
+  /// Smallest estimated reciprocal condition number (Eigen's rcond) of the condensation's
+  /// inversions D_k and P D_k⁻¹ Pᵀ at Ω (1 when uncondensed); below
+  /// kNhbIllConditioned the single solve and the curve carry a warning.
+  double condensation_rcond = 1.0;
   Status status = Status::kSuccess;
 };
+
+/// Reciprocal condition number of the condensation below which a warning is given [-].
+inline constexpr double kNhbIllConditioned = 1e-10;
 
 /// @brief Single-frequency result.
 struct NhbSolveResult {

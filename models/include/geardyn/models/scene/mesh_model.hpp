@@ -114,6 +114,9 @@ int MeshDriveSign(const Scene& scene, const MeshDef& mesh,
 /// @return the core, the contact-line model it came from, s and the warnings.
 /// @throws InvalidInput (message starting "mesh.NAME") for an inconsistent MeshModelDef (user
 ///   parameters with slices, modifications, errors or stiffness_per_length), or as the builders.
-BuiltMeshCore BuildMeshCore(const Scene& scene, const MeshDef& mesh);
+/// @param[in] transmission_error false: no ε from the contact lines (modifications and tooth
+///   errors ignored: for analyses of the mean operator only; SceneSystemOptions).
+BuiltMeshCore BuildMeshCore(const Scene& scene, const MeshDef& mesh,
+                            bool transmission_error = true);
 
 }  // namespace geardyn

@@ -65,6 +65,12 @@ struct SceneSystemOptions {
   /// Keep only x, y and θz of every body (planar literature models): the others held fixed.
   /// Scene::planar (the scene's top-level `planar = true`) does the same.
   bool planar = false;
+  /// Build the transmission error ε of the contact-line meshes (modifications, tooth errors).
+  /// False for analyses of the mean (LTI) operator only (modes): ε never enters K or C, and
+  /// with tooth errors it is a table over the whole hunting period (lcm(z_1, z_2) mesh cycles),
+  /// the costliest part of the build. Meshes then load nothing through K2 ε, and
+  /// SystemModel::period_meshes() is the operator's.
+  bool transmission_error = true;
   /// False (with the field and value in `why`) on a non-finite angle or origin.
   bool IsValid(std::string* why) const;
 };
