@@ -38,10 +38,13 @@ int HighestHarmonic(const Coefficient& coef, std::int64_t core_period) {
 }
 
 // The 8 value channels of a mesh as a coefficient of its own phase (period 2π·P_k): exact steps
-// when everything is stepwise, otherwise samples (see the header's "Exactness").
+// when everything the channels depend on is stepwise, otherwise samples (see the header's
+// "Exactness"). with_load = false: only the operator's coefficients count (K2, C2 exact for a
+// stepwise stiffness even when ε is smooth; the load channels are then not meaningful).
 Coefficient MeshValueCoefficient(const SystemMesh& mesh, std::int64_t core_period,
-                                 int mesh_harmonics) {
-  const std::vector<const Coefficient*> coefs = internal::MeshOperatorCoefficients(mesh.core, true);
+                                 int mesh_harmonics, bool with_load) {
+  const std::vector<const Coefficient*> coefs =
+      internal::MeshOperatorCoefficients(mesh.core, with_load);
   std::optional<SliceMeshWorkspace> slice_ws;
   if (const auto* slice = std::get_if<SliceMeshCore>(&mesh.core)) slice_ws.emplace(*slice);
   const auto eval = [&](double phase, Eigen::Ref<VectorX> out) {
@@ -67,8 +70,13 @@ Coefficient MeshValueCoefficient(const SystemMesh& mesh, std::int64_t core_perio
   int highest = 0;
   for (const Coefficient* c : coefs) highest = std::max(highest, HighestHarmonic(*c, core_period));
   const std::int64_t wanted = 2 * (static_cast<std::int64_t>(mesh_harmonics) + 2 * highest) + 2;
-  const std::int64_t samples =
-      std::max<std::int64_t>(wanted, kMinSamplesPerMeshPeriod * core_period);
+  // A whole number of samples per mesh cycle: a mesh-periodic channel (K of a pair with errors
+  // over a hunting period) is then sampled at the same phases in every cycle, so its sampling
+  // error stays mesh-periodic and the FFT puts nothing between the mesh orders (with, e.g., 546.04
+  // samples per cycle the steps of a spur K leaked 1e-3 of the mesh line into every harmonic).
+  const std::int64_t per_mesh =
+      std::max<std::int64_t>(kMinSamplesPerMeshPeriod, (wanted + core_period - 1) / core_period);
+  const std::int64_t samples = per_mesh * core_period;
   MatrixX table(kNumValueChannels, samples);
   for (std::int64_t s = 0; s < samples; ++s) {
     eval(period * static_cast<double>(s) / static_cast<double>(samples), table.col(s));
@@ -95,10 +103,23 @@ std::vector<MeshHarmonics> ExpandMeshHarmonics(const SystemModel& model, int num
     const std::int64_t q = system_period / core_period;
     const int mesh_harmonics = static_cast<int>(num_harmonics / q);
     const FourierCoefficient series =
-        ToFourier(MeshValueCoefficient(mesh, core_period, mesh_harmonics), mesh_harmonics);
+        ToFourier(MeshValueCoefficient(mesh, core_period, mesh_harmonics, true), mesh_harmonics);
+    // K2, C2 from their own coefficients when those are stepwise but the load's are not (a spur
+    // pair with a smooth ε): exact sinc sums instead of sampled steps.
+    std::optional<FourierCoefficient> operator_series;
+    if (!internal::AllStepwise(internal::MeshOperatorCoefficients(mesh.core, true)) &&
+        internal::AllStepwise(internal::MeshOperatorCoefficients(mesh.core, false))) {
+      operator_series =
+          ToFourier(MeshValueCoefficient(mesh, core_period, mesh_harmonics, false), mesh_harmonics);
+    }
     for (int n = 0; n <= mesh_harmonics; ++n) {
       VectorXc c = n == 0 ? VectorXc(series.mean().cast<std::complex<double>>())
                           : VectorXc(series.harmonics().col(n - 1));
+      if (operator_series) {
+        c.head<6>() = n == 0
+                          ? VectorXc(operator_series->mean().cast<std::complex<double>>()).head<6>()
+                          : VectorXc(operator_series->harmonics().col(n - 1).head<6>());
+      }
       // θ_k = θ + φ_k: the mesh's e^{inθ_k/P_k} is e^{inφ_k/P_k} e^{imθ/P} in system phase.
       c *= std::polar(
           1.0, static_cast<double>(n) * mesh.phase_offset / static_cast<double>(core_period));
