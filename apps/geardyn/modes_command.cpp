@@ -21,7 +21,9 @@ struct ModesCommandOptions {
 
 int RunModes(const ModesCommandOptions& opts, std::ostream& out) {
   const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
-  const SceneSystem built = BuildSceneSystem(scene);
+  SceneSystemOptions system_options;
+  system_options.analysis = "modes";  // named if a mass is missing
+  const SceneSystem built = BuildSceneSystem(scene, system_options);
   const int n = built.model.num_dofs();
   const ModalOptions options = MakeModesOptions(opts.settings, n);
   const ModalResult result = ComputeModes(built.model, options);
