@@ -101,7 +101,9 @@ int RunFloquet(const FloquetCommandOptions& opts, std::ostream& out) {
   options.arpack_nev = opts.nev;
   const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
   if (scene.meshes.empty()) throw InvalidInput(scene.source + ": the scene has no mesh");
-  const SceneSystem built = BuildSceneSystem(scene);
+  SceneSystemOptions system_options;
+  system_options.analysis = "floquet";  // named if a mass is missing
+  const SceneSystem built = BuildSceneSystem(scene, system_options);
   options.mesh_frequency_hz = scene.MeshFrequencyHz(scene.meshes[0]);
   if (!(options.mesh_frequency_hz > 0.0)) {
     throw InvalidInput(scene.source +

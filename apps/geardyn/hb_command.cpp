@@ -183,7 +183,9 @@ int RunHb(const HbCommandOptions& opts, std::ostream& out, std::ostream& err) {
   const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
   const std::vector<double> frequencies =
       ParseMeshFrequencies(opts.settings.mesh_frequency, NominalMeshFrequency(scene));
-  const SceneSystem built = BuildSceneSystem(scene);
+  SceneSystemOptions system_options;
+  system_options.analysis = "hb";  // named if a mass is missing
+  const SceneSystem built = BuildSceneSystem(scene, system_options);
   const bool has_slices = built.model.time_dependence() == TimeDependence::kNonlinear;
   if (opts.nonlinear) {
     const std::string name = scene.meshes.empty() ? "NAME" : scene.meshes.front().name;

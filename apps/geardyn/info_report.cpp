@@ -40,8 +40,8 @@ json GearReport(const Scene& scene, const GearDef& def, const GearGeometry& g) {
           {"tip_thickness_normal", g.tip_thickness_normal},
           {"profile_shift", g.profile_shift},
           {"face_width", g.face_width},
-          {"mass", def.mass},
-          {"inertia", def.inertia},
+          {"mass", def.mass ? json(*def.mass) : json(nullptr)},  // optional in a scene
+          {"inertia", def.inertia ? json(*def.inertia) : json(nullptr)},
           {"speed_rpm", RadPerSecToRpm(scene.GearSpeed(def.name))}};
 }
 
@@ -68,6 +68,7 @@ json MeshReport(const Scene& scene, const MeshDef& mesh) {
       {"zero_backlash_center_distance", g.zero_backlash_center_distance},
       {"backlash_circumferential", g.backlash_circumferential},
       {"backlash_normal", g.backlash_normal},
+      {"interference_normal", g.interference_normal},
       {"base_pitch", g.transverse_base_pitch},
       {"normal_base_pitch", g.normal_base_pitch},
       {"line_of_action_length", g.line_of_action_length},
@@ -95,6 +96,11 @@ json MeshReport(const Scene& scene, const MeshDef& mesh) {
       {"hunting_period_s",
        f_mesh > 0.0 ? json(static_cast<double>(g.hunting_period_meshes) / f_mesh) : json(nullptr)},
   };
+  // Inputs accepted with an adjustment (geometry) and ISO 6336-1 validity notes.
+  json warnings = json::array();
+  for (const std::string& w : g.warnings) warnings.push_back("mesh." + mesh.name + ": " + w);
+  for (const std::string& w : iso.warnings) warnings.push_back("mesh." + mesh.name + ": " + w);
+  r["warnings"] = warnings;
   return r;
 }
 
@@ -201,6 +207,7 @@ std::string FormatInfoText(const nlohmann::json& report) {
     Line(out, "mesh frequency", mesh["mesh_frequency_hz"].get<double>(), "Hz");
     out << "  " << std::left << std::setw(34) << "hunting period" << std::right << std::setw(14)
         << mesh["hunting_period_meshes"].get<long>() << " mesh cycles\n";
+    for (const json& w : mesh["warnings"]) out << "warning: " << w.get<std::string>() << "\n";
   }
   return out.str();
 }

@@ -27,6 +27,9 @@ int RunMesh(const MeshCommandOptions& opts, std::ostream& out) {
           << m["period_meshes"].get<long>() << " mesh cycle(s), K "
           << m["stiffness"]["min"].get<double>() << " … " << m["stiffness"]["max"].get<double>()
           << " N/m (mean " << m["stiffness"]["mean"].get<double>() << ")\n";
+      for (const nlohmann::json& w : m["warnings"]) {
+        out << "warning: " << w.get<std::string>() << "\n";
+      }
     }
   }
   const std::string& dir = opts.scene.out_dir;

@@ -25,6 +25,7 @@ int RunModes(const ModesCommandOptions& opts, std::ostream& out) {
   // is not built.
   SceneSystemOptions system_options;
   system_options.transmission_error = false;
+  system_options.analysis = "modes";  // named if a mass is missing
   const SceneSystem built = BuildSceneSystem(scene, system_options);
   const int n = built.model.num_dofs();
   const ModalOptions options = MakeModesOptions(opts.settings, n);

@@ -67,8 +67,10 @@ class ChartContext {
     if (scene.meshes.empty()) {
       throw InvalidInput(scene.source + ": the scene has no mesh (a stability chart needs one)");
     }
+    SceneSystemOptions system_options;
+    system_options.analysis = "stability-chart";  // named if a mass is missing
     Built b;
-    b.model = std::make_shared<const SystemModel>(MakeSystemModel(scene));
+    b.model = std::make_shared<const SystemModel>(MakeSystemModel(scene, system_options));
     b.mesh_hz = scene.MeshFrequencyHz(scene.meshes[0]);
     b.rpm = scene.operating_point.speed * 60.0 / (2.0 * std::numbers::pi);
     ++builds_;

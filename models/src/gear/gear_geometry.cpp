@@ -26,6 +26,7 @@
 #include <cmath>
 #include <numeric>
 #include <ostream>
+#include <sstream>
 #include <string>
 
 #include "geardyn/common/check.hpp"
@@ -40,6 +41,9 @@ constexpr double kMaxHelixAngle = 60.0 * kPi / 180.0;
 // Relative tolerance (of m_n) under which a negative backlash or clearance counts as round-off:
 // a zero-backlash pair computed from its own a_w has |j_wt| ~ 1e-15 m_n.
 constexpr double kLengthTolerance = 1e-9;
+// Interference accepted as zero backlash, as the profile-shift sum excess that causes it: two
+// shifts printed to 4 decimals are each off by at most 5e-5 (documented in docs/scene-format.md).
+constexpr double kShiftRoundingTolerance = 1e-4;
 
 /// inv α = tan α − α.
 double Involute(double alpha) { return std::tan(alpha) - alpha; }
@@ -254,13 +258,28 @@ GearPairGeometry CalcGearPairGeometry(const GearPairSpec& spec) {
   const double s_w2 = ThicknessAt(spec.gear.kind, r2, s_t2, inv_alpha_t, rw2, inv_alpha_wt);
   const double p_wt = 2.0 * kPi * rw1 / z1;
   const double j_wt = p_wt - s_w1 - s_w2;
-  GEARDYN_THROW_UNLESS(j_wt >= -tol,
-                       "center_distance: " << Mm{a_w} << " gives negative backlash j_wt = "
-                                           << j_wt * 1e6 << " um (the flanks interfere); it is "
-                                           << Mm{std::abs(a_w - g.zero_backlash_center_distance)}
-                                           << (internal ? " above" : " below")
-                                           << " the zero-backlash centre distance "
-                                           << Mm{g.zero_backlash_center_distance});
+  if (j_wt < -tol) {
+    // Interference as the profile-shift excess that causes it: at a fixed a_w a change Δx of
+    // either shift changes the normal backlash by exactly −2 m_n sin α_n Δx (ISO 21771), and
+    // j_bn = j_wt cos α_wt cos β_b. Designs printed with shifts rounded to 4 decimals carry
+    // |Δx_1 + Δx_2| ≤ 1e-4, so up to that much is rounding: zero backlash plus a warning.
+    const double j_bn = j_wt * std::cos(alpha_wt) * std::cos(beta_b);
+    const double shift_excess = -j_bn / (2.0 * m_n * std::sin(alpha_n));
+    std::ostringstream message;
+    message << "center_distance: " << Mm{a_w} << " gives negative backlash j_wt = " << j_wt * 1e6
+            << " um, j_bn = " << j_bn * 1e6 << " um (the flanks interfere, as if x1 + x2 were "
+            << shift_excess << " too large); it is "
+            << Mm{std::abs(a_w - g.zero_backlash_center_distance)}
+            << (internal ? " above" : " below") << " the zero-backlash centre distance "
+            << Mm{g.zero_backlash_center_distance};
+    GEARDYN_THROW_UNLESS(shift_excess <= kShiftRoundingTolerance,
+                         message.str() << " (more than the " << kShiftRoundingTolerance
+                                       << " that rounding the shifts to 4 decimals explains)");
+    g.interference_normal = -j_bn;
+    message << "; within the " << kShiftRoundingTolerance
+            << " of shifts rounded to 4 decimals: taken as zero backlash";
+    g.warnings.push_back(message.str());
+  }
   g.backlash_circumferential = std::max(j_wt, 0.0);
   g.backlash_normal = g.backlash_circumferential * std::cos(alpha_wt) * std::cos(beta_b);
 

@@ -9,11 +9,13 @@
 /// * Internal gears: ISO 6336-1 replaces z_n2 by infinity in q' (the terms C3/z_n2 and
 ///   C7 x2/z_n2 vanish). It gives no other rule for x2; the ring's x2 enters C6 x2 + C9 x2² with
 ///   the ISO 21771 sign used throughout geardyn (positive x thickens the ring's teeth).
-/// * C_R: ISO 6336-1 defines it for one gear with a web (web thickness b_s, rim thickness s_R, in
-///   the standard's figure the wheel). Each member here gets its own factor from its GearBlank
-///   (1 for a solid blank, i.e. no web_thickness) and the pair uses the product, which is exactly
-///   ISO's value when only one gear is webbed and a conservative extension when both are (each
-///   web's compliance lowers the pair's stiffness). b is that gear's own face width.
+/// * C_R: ISO 6336-1 gives one gear blank factor for the mesh, from the web thickness b_s and rim
+///   thickness s_R of a webbed blank (solid discs: C_R = 1); its curves are mean values for a
+///   mating gear of similar or stiffer blank design. A pair therefore takes the C_R of its more
+///   flexible blank, min(C_R1, C_R2): the other blank is then the "similar or stiffer" mate. Two
+///   equal webbed blanks give the single-web value (not its square; KISSsoft prints the same one
+///   value per mesh), one webbed blank gives its own value, two solid blanks 1. Each blank's
+///   b_s/b uses its own face width b.
 #include "geardyn/models/gear/iso_stiffness.hpp"
 
 #include <algorithm>
@@ -107,8 +109,9 @@ IsoMeshStiffness CalcIsoMeshStiffness(const GearPairGeometry& g, const IsoStiffn
   out.theoretical_single_pair = 1.0 / out.q_prime;
 
   out.blank_factor = o.blank_factor;
-  out.rim_factor = RimFactor(spec.pinion, "pinion", spec.normal_module, &out.warnings) *
-                   RimFactor(spec.gear, "gear", spec.normal_module, &out.warnings);
+  // One C_R per mesh (ISO 6336-1): the more flexible blank's, its mate being similar or stiffer.
+  out.rim_factor = std::min(RimFactor(spec.pinion, "pinion", spec.normal_module, &out.warnings),
+                            RimFactor(spec.gear, "gear", spec.normal_module, &out.warnings));
   out.basic_rack_factor = 0.5 * (BasicRackFactor(spec.pinion, spec.normal_pressure_angle) +
                                  BasicRackFactor(spec.gear, spec.normal_pressure_angle));
   if (o.line_load && *o.line_load < kReferenceLineLoad) {

@@ -73,24 +73,27 @@ void ReadBlankOptions(const Fields& f, GearBlank* b) {
   b->rim_thickness = f.OptPositive("rim_thickness");
 }
 
-// Mass, polar and (optional) transverse moment of inertia.
+}  // namespace
+
+// Mass, polar and (optional) transverse moment of inertia, and where the body's table is.
 void ReadMassProperties(const Fields& f, GearDef* g) {
-  g->mass = f.ReqPositive("mass", "mass in kg, > 0");
-  g->inertia = f.ReqPositive("inertia", "polar moment of inertia in kg m², > 0");
+  // Optional here: only analyses that build the mass matrix need them (BuildSceneSystem).
+  g->mass = f.OptPositive("mass");
+  g->inertia = f.OptPositive("inertia");
   if (auto it = f.OptPositive("transverse_inertia")) {
     // Triangle inequality of the principal moments of a rigid body: I_zz <= I_xx + I_yy.
-    if (g->inertia > 2.0 * *it * (1.0 + kEqualTol)) {
+    if (g->inertia && *g->inertia > 2.0 * *it * (1.0 + kEqualTol)) {
       f.Fail("transverse_inertia",
-             "must be at least inertia/2 = " + FormatNumber(g->inertia / 2.0) +
+             "must be at least inertia/2 = " + FormatNumber(*g->inertia / 2.0) +
                  " kg m² (no rigid body has a polar moment above the sum of the two transverse "
                  "ones), got " +
                  FormatNumber(*it));
     }
     g->transverse_inertia = *it;
   }
+  g->key = f.prefix();
+  g->line = f.context().Line(&f.table());
 }
-
-}  // namespace
 
 GearDef ReadGear(const ErrorContext& ctx, const toml::table& t, std::size_t index) {
   GearDef g;

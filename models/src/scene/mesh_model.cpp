@@ -161,6 +161,8 @@ int MeshDriveSign(const Scene& scene, const MeshDef& mesh, std::vector<std::stri
 BuiltMeshCore BuildMeshCore(const Scene& scene, const MeshDef& mesh, bool transmission_error) {
   const MeshModelDef& model = mesh.model;
   std::vector<std::string> warnings;
+  for (const std::string& w : mesh.geometry.warnings)
+    warnings.push_back("mesh." + mesh.name + ": " + w);
   const int drive_sign = MeshDriveSign(scene, mesh, &warnings);
   if (model.parameters) {
     return {MakeUserCore(mesh), std::nullopt, drive_sign, std::move(warnings)};

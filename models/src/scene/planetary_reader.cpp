@@ -137,15 +137,7 @@ GearDef ReadCarrier(const Fields& f, const Scene& scene) {
     c.Fail("name", "'" + g.name + "' is empty or already the name of a gear");
   }
   g.blank.teeth = 0;
-  g.mass = c.ReqPositive("mass", "carrier mass in kg, > 0");
-  g.inertia = c.ReqPositive("inertia", "carrier polar moment of inertia in kg m², > 0");
-  if (auto it = c.OptPositive("transverse_inertia")) {
-    if (g.inertia > 2.0 * *it * (1.0 + kEqualTol)) {
-      c.Fail("transverse_inertia", "must be at least inertia/2 = " + FormatNumber(g.inertia / 2.0) +
-                                       " kg m², got " + FormatNumber(*it));
-    }
-    g.transverse_inertia = *it;
-  }
+  ReadMassProperties(c, &g);
   return g;
 }
 

@@ -28,6 +28,10 @@ inline constexpr double kEqualTol = 1e-9;
 /// @brief Reads element `index` of [[gear]] (gear_reader.cpp).
 GearDef ReadGear(const ErrorContext& ctx, const toml::table& t, std::size_t index);
 
+/// @brief The optional mass, inertia and transverse_inertia of a body table (gear or carrier),
+/// and the table's key and line (GearDef::key, GearDef::line).
+void ReadMassProperties(const Fields& f, GearDef* g);
+
 /// @brief Reads element `index` of [[mesh]] and derives its pair geometry (mesh_reader.cpp).
 /// @param[in] scene the gears read so far and the meshes before this one
 MeshDef ReadMesh(const ErrorContext& ctx, const toml::table& t, std::size_t index,

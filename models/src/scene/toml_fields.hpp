@@ -54,6 +54,8 @@ class Fields {
   const toml::node* Find(std::string_view key) const { return table_.get(key); }
   const toml::table& table() const { return table_; }
   const ErrorContext& context() const { return ctx_; }
+  /// The key path of the table itself ("gear.wheel").
+  const std::string& prefix() const { return prefix_; }
 
   /// Fails at `key`'s value (or, if absent, at the file) under its full key path.
   [[noreturn]] void Fail(std::string_view key, const std::string& reason) const {

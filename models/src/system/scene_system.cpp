@@ -13,6 +13,7 @@
 #include "geardyn/models/mesh/mesh_jacobian.hpp"
 #include "geardyn/models/scene/mesh_model.hpp"
 #include "geardyn/models/scene/planetary.hpp"
+#include "geardyn/models/scene/scene_reader.hpp"
 #include "geardyn/system/system_builder.hpp"
 
 namespace geardyn {
@@ -26,6 +27,16 @@ int GearIndex(const Scene& scene, const std::string& name) {
   }
   GEARDYN_THROW_UNLESS(false, "gear '" << name << "': unknown");
   return -1;
+}
+
+// A body's mass or inertia, which the scene may omit (geometry and mesh stiffness do not use
+// them): its absence is an error of the scene, at the body's table, naming what needs it.
+double RequireMassProperty(const Scene& scene, const GearDef& gear, const char* field,
+                           const std::optional<double>& value, const std::string& analysis) {
+  if (value) return *value;
+  const std::string key = (gear.key.empty() ? "gear." + gear.name : gear.key) + "." + field;
+  throw SceneError(scene.source, gear.line, key,
+                   "required by " + analysis + " (mass matrix); the scene does not give it");
 }
 
 }  // namespace
@@ -161,9 +172,10 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
   for (int g = 0; g < num_gears; ++g) {
     const GearDef& gear = scene.gears[g];
     RigidBodyInertia inertia;
-    inertia.mass = gear.mass;
-    inertia.polar_inertia = gear.inertia;
-    inertia.diametral_inertia = gear.transverse_inertia.value_or(0.5 * gear.inertia);
+    inertia.mass = RequireMassProperty(scene, gear, "mass", gear.mass, options.analysis);
+    inertia.polar_inertia =
+        RequireMassProperty(scene, gear, "inertia", gear.inertia, options.analysis);
+    inertia.diametral_inertia = gear.transverse_inertia.value_or(0.5 * inertia.polar_inertia);
     body[g] = builder.AddBody(gear.name, CalcRigidBodyMassMatrix(inertia), out.centres[g]);
   }
   for (const PlanetaryDef& set : scene.planetaries) {

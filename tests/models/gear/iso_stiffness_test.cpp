@@ -2,9 +2,9 @@
 // the factors C_M, C_R, C_B, the line-load scaling, the ISO index swap, internal pairs, and the
 // typical values c' ≈ 14, c_γα ≈ 20 N/(mm·µm) the standard gives for standard gears.
 //
-// No published worked example with a printed c' could be retrieved here (ISO/TR 6336-30 is not
-// freely available), so the q' values are recomputed term by term from the standard's constants
-// and the result is checked against the standard's typical values.
+// The q' values are recomputed term by term from the standard's constants and the result is
+// checked against the standard's typical values; published and commercial worked examples (ISO/TR
+// 6336-30, a KISSsoft report) are in tests/reference/iso_6336_stiffness_test.cpp.
 #include "geardyn/models/gear/iso_stiffness.hpp"
 
 #include <gtest/gtest.h>
@@ -133,11 +133,12 @@ TEST(IsoStiffnessTest, RimAndBasicRackFactors) {
   const double c_r = 1.0 + std::log(0.5) / (5.0 * std::exp(0.6));
   EXPECT_NEAR(k.rim_factor, c_r, kRoundOff);
   EXPECT_NEAR(k.rim_factor, 0.92392, 1e-5);
-  // Both blanks webbed: product of the two factors.
+  // Both blanks webbed: one C_R for the mesh, the more flexible blank's (here the pinion's).
   s.pinion.web_thickness = 8.0 * kMm;  // b_s/b = 0.2
   s.pinion.rim_thickness = 3.0 * kMm;  // s_R/m_n = 1
   const IsoMeshStiffness k2 = CalcIsoMeshStiffness(CalcGearPairGeometry(s));
-  EXPECT_NEAR(k2.rim_factor, c_r * (1.0 + std::log(0.2) / (5.0 * std::exp(0.2))), kRoundOff);
+  EXPECT_NEAR(k2.rim_factor, 1.0 + std::log(0.2) / (5.0 * std::exp(0.2)), kRoundOff);
+  EXPECT_LT(k2.rim_factor, c_r);
   EXPECT_TRUE(k2.warnings.empty());
   // Out-of-range b_s/b and s_R/m_n are clamped to 0.2 and 1 with warnings.
   s.pinion.web_thickness = 2.0 * kMm;

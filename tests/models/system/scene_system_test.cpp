@@ -45,9 +45,9 @@ TEST(SceneSystemTest, BuildsBodiesBearingsMeshAndLoads) {
   EXPECT_DOUBLE_EQ(model.constant_load()(11), 366.0);
   // Mass: diag(m, m, m, I_d, I_d, J).
   const MatrixX M = model.DenseMass();
-  EXPECT_DOUBLE_EQ(M(0, 0), scene.gears[0].mass);
+  EXPECT_DOUBLE_EQ(M(0, 0), *scene.gears[0].mass);
   EXPECT_DOUBLE_EQ(M(3, 3), *scene.gears[0].transverse_inertia);
-  EXPECT_DOUBLE_EQ(M(5, 5), scene.gears[0].inertia);
+  EXPECT_DOUBLE_EQ(M(5, 5), *scene.gears[0].inertia);
   EXPECT_NE(model.time_dependence(), TimeDependence::kConstant);
 }
 

@@ -10,6 +10,8 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace geardyn {
 
@@ -92,14 +94,18 @@ struct GearPairGeometry {
   double zero_backlash_center_distance = 0.0;  ///< a_w at which the flanks close on both sides [m]
   double backlash_circumferential = 0.0;       ///< j_wt on the operating pitch circle [m] (≥ 0)
   double backlash_normal = 0.0;                ///< j_bn = j_wt cos α_wt cos β_b [m]
-  double transverse_base_pitch = 0.0;          ///< p_bt = π m_t cos α_t [m]
-  double normal_base_pitch = 0.0;              ///< p_bn = π m_n cos α_n [m]
-  double line_of_action_length = 0.0;          ///< g_α, length of path of contact (transverse) [m]
-  double face_width = 0.0;                     ///< common face width b = min(b_1, b_2) [m]
-  double transverse_contact_ratio = 0.0;       ///< ε_α = g_α / p_bt [-]
-  double overlap_contact_ratio = 0.0;          ///< ε_β = b sin β / (π m_n) [-]
-  double total_contact_ratio = 0.0;            ///< ε_γ = ε_α + ε_β [-]
-  double gear_ratio = 0.0;                     ///< u = z_gear / z_pinion [-]
+  /// Interference accepted as zero backlash [m]: −j_bn of a given a_w slightly below the
+  /// zero-backlash distance (above for internal pairs), at most what rounding x1 + x2 by 1e-4
+  /// causes, 2e-4 m_n sin α_n (see CalcGearPairGeometry); 0 otherwise.
+  double interference_normal = 0.0;
+  double transverse_base_pitch = 0.0;     ///< p_bt = π m_t cos α_t [m]
+  double normal_base_pitch = 0.0;         ///< p_bn = π m_n cos α_n [m]
+  double line_of_action_length = 0.0;     ///< g_α, length of path of contact (transverse) [m]
+  double face_width = 0.0;                ///< common face width b = min(b_1, b_2) [m]
+  double transverse_contact_ratio = 0.0;  ///< ε_α = g_α / p_bt [-]
+  double overlap_contact_ratio = 0.0;     ///< ε_β = b sin β / (π m_n) [-]
+  double total_contact_ratio = 0.0;       ///< ε_γ = ε_α + ε_β [-]
+  double gear_ratio = 0.0;                ///< u = z_gear / z_pinion [-]
   // Tooth-count facts that θ* needs (spec 01 §1).
   int teeth_gcd = 0;                        ///< gcd(z_1, z_2)
   std::int64_t hunting_period_meshes = 0;   ///< mesh cycles per hunting period = lcm(z_1, z_2)
@@ -115,6 +121,8 @@ struct GearPairGeometry {
   double path_start_from_pinion_tangent = 0.0;   ///< T1A: mating tip meets the pinion flank [m]
   double path_end_from_pinion_tangent = 0.0;     ///< T1E = sqrt(r_a1² − r_b1²): pinion tip [m]
   double pitch_point_from_pinion_tangent = 0.0;  ///< T1C = r_b1 tan α_wt [m]
+  /// Notes on inputs accepted with an adjustment (interference within the rounding tolerance).
+  std::vector<std::string> warnings;
 };
 
 /// @brief Derives the pair geometry and rejects pairs that cannot mesh.
@@ -124,7 +132,10 @@ struct GearPairGeometry {
 /// "normal_pressure_angle" outside (0, 45°), "helix_angle" outside [0, 60°), "pinion_hand"
 /// inconsistent with β, "<member>.teeth" < 3, "<member>.face_width", ...), "pinion.kind"
 /// (internal pinion), "gear.teeth" (ring not larger than its pinion), "profile_shift_sum" (no
-/// zero-backlash distance), "center_distance" (not above r_b2 ± r_b1, or negative backlash),
+/// zero-backlash distance), "center_distance" (not above r_b2 ± r_b1, or negative backlash
+/// beyond the rounding tolerance: a given a_w may interfere by at most what a profile-shift sum
+/// too large by 1e-4 causes, j_bn ≥ −2e-4 m_n sin α_n, the rounding of two shifts printed to 4
+/// decimals; such a pair runs with zero backlash, interference_normal and a warning),
 /// "<member>.root_radius", "<member>.tip_radius" (tip not above its base circle),
 /// "center_distance" (a given a_w at which the tips no longer overlap along the line of action,
 /// g_α ≤ 0: external pairs above sqrt((T1E + T2A)² + (r_b1 + r_b2)²), internal pairs below

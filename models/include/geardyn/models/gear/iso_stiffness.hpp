@@ -32,8 +32,10 @@ struct IsoMeshStiffness {
   double mesh_alpha = 0.0;   ///< c_γα = c' (0.75 ε_α + 0.25) [N/m²]
   double mesh_beta = 0.0;    ///< c_γβ = 0.85 c_γα [N/m²]
   double q_prime = 0.0;  ///< q', minimum flexibility of a tooth pair [m²/N] (SI, not mm·µm/N)
-  double blank_factor = 0.0;       ///< C_M [-] as used
-  double rim_factor = 0.0;         ///< C_R [-] = C_R(pinion) · C_R(gear), each 1 for solid blanks
+  double blank_factor = 0.0;  ///< C_M [-] as used
+  /// C_R [-], one per mesh: min(C_R(pinion), C_R(gear)), each 1 for a solid blank (the more
+  /// flexible blank's value, ISO 6336-1: curves for a mate of similar or stiffer blank design)
+  double rim_factor = 0.0;
   double basic_rack_factor = 0.0;  ///< C_B [-] = (C_B1 + C_B2) / 2
   // Added by the implementation:
   double line_load_factor = 1.0;  ///< (F_t K_A / b / 100 N/mm)^0.25 if below 100 N/mm, else 1
@@ -46,8 +48,9 @@ struct IsoMeshStiffness {
 /// @brief ISO 6336-1:2006/2019 method B single and mesh stiffness of a pair.
 ///
 /// q' = C1 + C2/z_n1 + C3/z_n2 + C4 x1 + C5 x1/z_n1 + C6 x2 + C7 x2/z_n2 + C8 x1² + C9 x2²
-/// [mm·µm/N], index 1 = fewer teeth; internal gears use z_n2 = ∞. C_R per webbed blank:
-/// 1 + ln(b_s/b) / (5 exp(s_R / (5 m_n))), with b_s/b clamped to [0.2, 1.2] and s_R/m_n ≥ 1.
+/// [mm·µm/N], index 1 = fewer teeth; internal gears use z_n2 = ∞. C_R of a webbed blank:
+/// 1 + ln(b_s/b) / (5 exp(s_R / (5 m_n))), with b_s/b clamped to [0.2, 1.2] and s_R/m_n ≥ 1; the
+/// mesh uses the smaller of the two blanks' values (one C_R per mesh, see rim_factor).
 /// @throws InvalidInput if options are not finite/positive, or a blank gives web_thickness
 ///   without rim_thickness (message names the field).
 IsoMeshStiffness CalcIsoMeshStiffness(const GearPairGeometry& g, const IsoStiffnessOptions& o = {});

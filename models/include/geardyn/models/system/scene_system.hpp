@@ -71,6 +71,9 @@ struct SceneSystemOptions {
   /// the costliest part of the build. Meshes then load nothing through K2 ε, and
   /// SystemModel::period_meshes() is the operator's.
   bool transmission_error = true;
+  /// What the model is built for, named by the error when a body lacks `mass` or `inertia`
+  /// (optional in a scene): "<file>:<line>: gear.pinion.mass: required by modes (mass matrix)".
+  std::string analysis = "the system model";
   /// False (with the field and value in `why`) on a non-finite angle or origin.
   bool IsValid(std::string* why) const;
 };
@@ -86,7 +89,7 @@ struct SceneSystem {
 
 /// @brief Builds the SystemModel of a scene and reports the placement (see the @file).
 /// @throws InvalidInput on invalid options, an inconsistent closed loop, or as SystemBuilder and
-///   BuildMeshCore.
+///   BuildMeshCore; SceneError at the body's table when a body has no mass or inertia.
 SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& options = {});
 
 /// @brief BuildSceneSystem(scene, options).model.
