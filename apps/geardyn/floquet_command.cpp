@@ -38,6 +38,13 @@ nlohmann::json MakeFloquetReport(const Scene& scene, const std::string& requeste
                            {"exponent_re", mu.real()},
                            {"exponent_im", mu.imag()}});
   }
+  nlohmann::json undamped = nlohmann::json::array();
+  for (const UndampedMode& m : r.undamped_modes) {
+    undamped.push_back({{"mode", m.index},
+                        {"frequency_hz", m.frequency_hz},
+                        {"damping_ratio", m.damping_ratio},
+                        {"dominant_dof", m.dominant_dof}});
+  }
   nlohmann::json warnings = scene_warnings;
   for (const std::string& w : r.summary.warnings) warnings.push_back(w);
   return {{"scene", scene.source},
@@ -49,8 +56,10 @@ nlohmann::json MakeFloquetReport(const Scene& scene, const std::string& requeste
           {"method_used", ToString(r.method_used)},
           {"max_abs_multiplier", r.max_abs_multiplier},
           {"stability_margin", r.stability_margin},
-          {"stable", r.stable},
-          {"verdict", r.stable ? "stable" : "unstable"},
+          {"stable", r.stable()},
+          {"verdict", ToString(r.verdict)},
+          {"marginal", r.marginal},
+          {"undamped_modes", undamped},
           {"error_estimate", r.summary.error_estimate},
           {"status", StatusName(r.summary.status)},
           {"message", r.summary.message},
@@ -72,7 +81,28 @@ std::string FormatFloquetText(const nlohmann::json& j) {
     << j["error_estimate"].get<double>() << ", status " << j["status"].get<std::string>();
   if (!j["message"].get<std::string>().empty()) s << ": " << j["message"].get<std::string>();
   s << "\nmax|λ| = " << j["max_abs_multiplier"].get<double>() << ", margin "
-    << j["stability_margin"].get<double>() << " → " << j["verdict"].get<std::string>() << "\n";
+    << j["stability_margin"].get<double>() << " → " << j["verdict"].get<std::string>();
+  if (j["marginal"].get<bool>()) {
+    s << ", marginal (undamped modes";
+    const nlohmann::json& modes = j["undamped_modes"];
+    if (modes.empty()) s << " or a multiplier on the unit circle within the error estimate";
+    std::size_t k = 0;
+    for (const nlohmann::json& m : modes) {
+      if (k == 8) {
+        s << ", … " << modes.size() - 8 << " more";
+        break;
+      }
+      s << (k++ == 0 ? ": " : ", ") << "mode " << m["mode"].get<int>() << " "
+        << std::setprecision(6) << m["frequency_hz"].get<double>() << " Hz ("
+        << m["dominant_dof"].get<std::string>() << ")" << std::setprecision(10);
+    }
+    s << ")";
+  }
+  if (j["verdict"].get<std::string>() == "undetermined") {
+    s << " (the multipliers or their error estimate cannot be trusted; see the status and "
+         "warnings)";
+  }
+  s << "\n";
   s << "  #   Re λ              Im λ              |λ|\n";
   int k = 1;
   for (const nlohmann::json& m : j["multipliers"]) {
@@ -120,7 +150,10 @@ int RunFloquet(const FloquetCommandOptions& opts, std::ostream& out) {
     WriteOutputFile(dir, "multipliers.csv", MultipliersCsv(result));
     if (!opts.scene.json) out << "written to " << dir << "\n";
   }
-  return result.summary.ok() ? int{kExitOk} : int{kExitNumericalIssue};
+  // Exit 1 on any status but success and on an undetermined verdict (scripts test the code).
+  return result.summary.ok() && result.verdict != FloquetVerdict::kUndetermined
+             ? int{kExitOk}
+             : int{kExitNumericalIssue};
 }
 
 }  // namespace

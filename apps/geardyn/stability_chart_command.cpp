@@ -66,8 +66,11 @@ nlohmann::json MakeChartReport(const SceneChartSettings& settings, const SceneCh
   const auto axis = [](const ChartAxis& a) {
     return nlohmann::json{{"path", a.name}, {"lo", a.lo}, {"hi", a.hi}, {"n", a.num_points}};
   };
-  long unstable = 0;
-  for (std::size_t i = 0; i < c.stable.size(); ++i) unstable += c.ok[i] && !c.stable[i];
+  long unstable = 0, undetermined = 0;
+  for (std::size_t i = 0; i < c.stable.size(); ++i) {
+    unstable += c.ok[i] && !c.stable[i];
+    undetermined += c.ok[i] ? 0 : 1;
+  }
   return {{"scene", settings.scene},
           {"overrides", settings.overrides},
           {"x", axis(c.x_axis)},
@@ -86,6 +89,7 @@ nlohmann::json MakeChartReport(const SceneChartSettings& settings, const SceneCh
           {"model_builds", run.model_builds},
           {"num_points", c.stable.size()},
           {"num_unstable_points", unstable},
+          {"num_undetermined_points", undetermined},
           {"num_curves", c.curves.size()},
           {"num_curve_points", curve_points},
           {"regions", regions},
@@ -168,7 +172,8 @@ std::string FormatChartText(const nlohmann::json& j) {
   };
   s << "stability chart: " << j["scene"].get<std::string>() << "\n  x: " << axis(j["x"])
     << "\n  y: " << axis(j["y"]) << "\n  " << j["num_points"].get<long>() << " points, "
-    << j["num_unstable_points"].get<long>() << " unstable, " << j["regions"].size()
+    << j["num_unstable_points"].get<long>() << " unstable, "
+    << j["num_undetermined_points"].get<long>() << " undetermined, " << j["regions"].size()
     << " region(s), " << j["num_curves"].get<long>() << " transition curve(s) ("
     << j["num_curve_points"].get<long>() << " points), method " << j["method"].get<std::string>()
     << ", " << j["counters"]["evaluations"].get<long>() << " evaluations on "

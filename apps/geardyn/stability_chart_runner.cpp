@@ -119,8 +119,9 @@ class ChartContext {
     out.max_abs_multiplier = r.max_abs_multiplier;
     out.error_estimate = r.summary.error_estimate;
     out.mesh_frequency_hz = f_m;
-    // A missed tolerance still gives a usable max|λ| (its error estimate widens the verdict).
-    out.ok = r.summary.ok() || r.summary.status == Status::kToleranceNotMet;
+    // Only a point with a verdict is charted: a missed tolerance still counts when the point
+    // is unstable beyond its estimate (FloquetVerdict); undetermined points are counted apart.
+    out.ok = r.verdict != FloquetVerdict::kUndetermined;
     return out;
   }
 

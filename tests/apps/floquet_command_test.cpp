@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <complex>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "geardyn/models/scene/builtin_scenes.hpp"
 #include "support/cli_run.hpp"
 
 namespace geardyn {
@@ -106,6 +108,92 @@ TEST(FloquetCommand, ArpackDominantMultiplierMatchesExactSteps) {
       RunGeardyn({"floquet", kRig, "--method", "arpack_monodromy", "--nev", "0"});
   EXPECT_EQ(bad.code, app::kExitBadInput);
   EXPECT_NE(bad.err.find("nev"), std::string::npos) << bad.err;
+}
+
+// Issue 12: the two commands that printed "max|λ| = inf → stable". Whatever they now answer, a
+// "stable" verdict must rest on finite multipliers and status success, and an undetermined one
+// must exit 1 (the rules of FloquetVerdict, checked on the JSON a script reads).
+void ExpectHonestVerdict(const std::vector<std::string>& args) {
+  std::vector<std::string> with_json = args;
+  with_json.push_back("--json");
+  const test::CliRun run = RunGeardyn(with_json);
+  ASSERT_TRUE(run.code == app::kExitOk || run.code == app::kExitNumericalIssue) << run.err;
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  const std::string verdict = j["verdict"].get<std::string>();
+  const std::string status = j["status"].get<std::string>();
+  const bool finite =
+      j["max_abs_multiplier"].is_number() && std::isfinite(j["max_abs_multiplier"].get<double>()) &&
+      j["error_estimate"].is_number() && std::isfinite(j["error_estimate"].get<double>());
+  SCOPED_TRACE(args[1] + " " + (args.size() > 2 ? args.back() : std::string()) + ": " + verdict +
+               ", status " + status + ", " + j["message"].get<std::string>());
+  if (verdict == "stable") {
+    EXPECT_TRUE(finite);
+    EXPECT_EQ(status, "success");
+    EXPECT_LE(j["max_abs_multiplier"].get<double>(), 1.0 + j["error_estimate"].get<double>());
+    for (const nlohmann::json& m : j["multipliers"]) {
+      EXPECT_TRUE(m["abs"].is_number() && std::isfinite(m["abs"].get<double>()));
+    }
+    EXPECT_EQ(run.code, app::kExitOk);
+  } else if (verdict == "unstable") {
+    EXPECT_TRUE(status == "success" || status == "tolerance_not_met");
+    EXPECT_FALSE(j["stable"].get<bool>());
+  } else {
+    EXPECT_EQ(verdict, "undetermined");
+    EXPECT_EQ(run.code, app::kExitNumericalIssue);
+    EXPECT_FALSE(j["stable"].get<bool>());
+  }
+}
+
+TEST(FloquetCommand, IssueTwelveCasesAreNeverStableWithInfiniteMultipliers) {
+  ExpectHonestVerdict({"floquet", "builtin:planetary-wind-turbine"});
+  ExpectHonestVerdict(
+      {"floquet", "builtin:helical-pair", "--set", "operating_point.speed_rpm=200"});
+}
+
+// Every built-in scene (`geardyn scenes`) at its own operating point: a verdict that follows the
+// rules (never stable with inf/NaN or a failed status; undetermined exits 1).
+TEST(FloquetCommand, BuiltinScenesAtTheirOperatingPointsHaveHonestVerdicts) {
+  int checked = 0;
+  for (const std::string& name : BuiltinSceneNames()) {
+    ExpectHonestVerdict({"floquet", "builtin:" + name});
+    ++checked;
+  }
+  EXPECT_GE(checked, 3);
+}
+
+// The built-in rig has no damping at all (examples/scenes, docs/scene-format.md): stable is then
+// only marginal, and every flexible mode of `geardyn modes` (a different command and solver path)
+// is listed as undamped.
+TEST(FloquetCommand, UndampedRigIsMarginalAndNamesItsModes) {
+  const nlohmann::json j = RunJson({"floquet", kRig});
+  ASSERT_EQ(j["verdict"], "stable");
+  EXPECT_TRUE(j["marginal"].get<bool>());
+  const nlohmann::json modes = RunJson({"modes", kRig});
+  std::size_t flexible = 0;
+  for (const nlohmann::json& m : modes["modes"]) flexible += m["frequency_hz"].get<double>() > 0.0;
+  EXPECT_EQ(j["undamped_modes"].size(), flexible);
+  const test::CliRun text = RunGeardyn({"floquet", kRig});
+  EXPECT_NE(text.out.find("stable, marginal (undamped modes: mode "), std::string::npos)
+      << text.out;
+}
+
+// Tooth errors give ε a hunting period but do not change K or C: the homogeneous problem's
+// multipliers with a gear runout are those without it (truth: the run without the runout, one
+// mesh period), and the reported period is the mesh period.
+TEST(FloquetCommand, RunoutDoesNotChangeTheMultipliers) {
+  const nlohmann::json plain = RunJson({"floquet", kRig});
+  const nlohmann::json runout =
+      RunJson({"floquet", kRig, "--set", "mesh.pinion-wheel.errors.gear_runout=1e-5"});
+  EXPECT_EQ(runout["period_meshes"].get<long>(), 1);
+  EXPECT_GT(runout["counters"]["load_period_meshes"].get<long>(), 1);
+  EXPECT_DOUBLE_EQ(runout["period_s"].get<double>(), plain["period_s"].get<double>());
+  const auto a = Multipliers(plain), b = Multipliers(runout);
+  ASSERT_EQ(a.size(), b.size());
+  for (const auto& l : a) {
+    double nearest = 1e300;
+    for (const auto& m : b) nearest = std::min(nearest, std::abs(l - m));
+    EXPECT_LT(nearest, 1e-10) << l;
+  }
 }
 
 TEST(FloquetCommand, BadInputExitsWithTwo) {

@@ -32,7 +32,6 @@ namespace geardyn::internal {
 namespace {
 
 constexpr int kMaxTaylorTerms = 60;
-constexpr int kMaxMagnusSteps = 1 << 16;
 constexpr double kExpmFlopsPerN3 =
     25.0;  // Padé 13 with scaling: ≈ 6 products + a solve + squarings
 constexpr double kTaylorTermsPerSubstep = 20.0;
@@ -239,7 +238,7 @@ double ResidualBound(const Run& right, const Run& left, int count, double log_sc
       Eigen::Index j = 0;
       (left.theta.array() - right.theta[i]).abs().minCoeff(&j);
       const double gap = std::abs(left.theta[j] - right.theta[i]);
-      rho = std::max(rho, left.residuals[j]);
+      rho = MaxPropagatingNaN(rho, left.residuals[j]);
       if (gap <= 1e3 * rho + 1e-12 * theta_max) {
         const double overlap =
             std::abs((left.vectors.col(j).transpose() * right.vectors.col(i))(0));
@@ -250,7 +249,7 @@ double ResidualBound(const Run& right, const Run& left, int count, double log_sc
         bound = std::sqrt(rho * theta_max);
       }
     }
-    worst = std::max(worst, bound);
+    worst = MaxPropagatingNaN(worst, bound);
   }
   return worst * std::exp(std::min(log_scale, 700.0));
 }
@@ -313,7 +312,21 @@ FloquetResult ArpackMonodromyFloquet(const StateSystem& sys, const FloquetOption
   } else {
     // Step doubling with Richardson on the dominant multipliers (as MagnusMonodromy on Φ).
     const double p = options.magnus_order;
-    int n1 = 8;
+    // Start where h‖A‖ ≤ 1 (MagnusStartSteps, magnus.cpp), capped so one doubling fits.
+    const double norm_T = MaxOperatorNormTimesPeriod(sys, &evaluations);
+    const int start = MagnusStartSteps(norm_T);
+    if (start > kMaxMagnusSteps) {
+      result.summary.status = Status::kToleranceNotMet;
+      result.summary.message = "arpack_monodromy: max‖A‖₁·T = " + std::to_string(norm_T) +
+                               " needs more than " + std::to_string(kMaxMagnusSteps) +
+                               " Magnus steps per period; not attempted";
+      result.summary.error_estimate = std::numeric_limits<double>::quiet_NaN();
+      result.max_abs_multiplier = std::numeric_limits<double>::quiet_NaN();
+      result.stability_margin = std::numeric_limits<double>::quiet_NaN();
+      result.verdict = FloquetVerdict::kUndetermined;
+      return result;
+    }
+    int n1 = std::min(start, kMaxMagnusSteps / 2);
     prop = MagnusPropagator(sys, options.magnus_order, n1);
     run = RunOperator(prop, false, nev_run, ncv, tol, options.arpack_max_iterations, sys.period_s);
     evaluations += prop.evaluations;
@@ -332,8 +345,9 @@ FloquetResult ArpackMonodromyFloquet(const StateSystem& sys, const FloquetOption
                              : std::numeric_limits<double>::infinity();
       prop = std::move(fine_prop);
       run = std::move(fine);
-      if (err <= options.tolerance || n2 >= kMaxMagnusSteps || !std::isfinite(err)) {
-        truncation = err;
+      // A non-finite estimate (failed or overflowing coarse run) means "refine", not "done".
+      if (err <= options.tolerance || n2 >= kMaxMagnusSteps || !fine.arnoldi.ok) {
+        truncation = std::isnan(err) ? std::numeric_limits<double>::infinity() : err;
         if (!(err <= options.tolerance)) {
           magnus_met = false;
           magnus_message = "arpack_monodromy: Richardson estimate of the dominant multipliers " +
@@ -342,9 +356,12 @@ FloquetResult ArpackMonodromyFloquet(const StateSystem& sys, const FloquetOption
         }
         break;
       }
-      const double grow = std::clamp(1.2 * std::pow(err / options.tolerance, 1.0 / p), 1.5, 16.0);
+      const double grow =
+          std::isfinite(err)
+              ? std::clamp(1.2 * std::pow(err / options.tolerance, 1.0 / p), 1.5, 16.0)
+              : 4.0;
       n1 = n2;
-      n2 = std::min(kMaxMagnusSteps, static_cast<int>(std::ceil(n2 * grow)));
+      n2 = static_cast<int>(std::min<double>(kMaxMagnusSteps, std::ceil(n2 * grow)));
     }
   }
   const ArnoldiOutcome& a = run.arnoldi;
@@ -371,13 +388,13 @@ FloquetResult ArpackMonodromyFloquet(const StateSystem& sys, const FloquetOption
     s.message = "arpack_monodromy: " + a.message;
     result.max_abs_multiplier = std::numeric_limits<double>::quiet_NaN();
     result.stability_margin = std::numeric_limits<double>::quiet_NaN();
-    result.stable = false;
+    result.verdict = FloquetVerdict::kUndetermined;
     return result;
   }
   result.multipliers = run.multipliers;
   result.exponents = run.exponents;
   KeepLeading(nev, &result.multipliers, &result.exponents);
-  const double max_abs = result.multipliers.size() ? result.multipliers.cwiseAbs().maxCoeff() : 0.0;
+  const double max_abs = MaxAbsOf(result.multipliers);
   const double roundoff =
       std::numeric_limits<double>::epsilon() * (10.0 * sys.dim + prop.num_factors) * max_abs;
   s.error_estimate =

@@ -13,6 +13,8 @@
 #include "geardyn/analyses/floquet.hpp"
 #include "geardyn/analyses/floquet_system.hpp"
 #include "geardyn/common/eigen_types.hpp"
+#include "geardyn/system/system_model.hpp"
+#include "geardyn/system/system_steps.hpp"
 
 namespace geardyn::internal {
 
@@ -61,6 +63,40 @@ struct StateSystem {
 /// @brief Builds the StateSystem (validates the system; throws InvalidInput).
 StateSystem MakeStateSystem(const PeriodicSecondOrderSystem& system, bool deflate_rigid);
 
+/// @brief P_K [-]: the lcm of the cores' stiffness periods (K(θ), C(θ)); divides the model's
+/// period_meshes(), which also counts the transmission error's hunting period
+/// (operator_period.cpp).
+std::int64_t OperatorPeriodMeshes(const SystemModel& model);
+/// @brief The step structure of K and C over one operator period 2π·P_K (CollectSystemSteps
+/// truncated to [0, 2π·P_K)).
+SystemSteps OperatorSteps(const SystemModel& model, std::int64_t operator_period);
+
+/// @brief The automatic kModalProjection basis (model_floquet.cpp): the modes of the mean system
+/// below 2.25 f_m and those with ≥ 5 % of their strain energy in a mesh, in frequency order,
+/// then the others in frequency order (the enlarged bases of the error estimate).
+struct MeshDrivenBasis {
+  MatrixX modes;         ///< (n × m) M-orthonormal, priority modes first
+  int num_priority = 0;  ///< the first basis size m₀ (at least min(12, m))
+};
+inline constexpr int kMaxBasisModes = 1500;        ///< modes computed for the selection
+inline constexpr double kBasisResonanceOrder = 3;  ///< k_max of f_m = 2 f_p / k
+inline constexpr double kBasisFrequencyMargin = 1.5;
+inline constexpr double kMeshStrainShare = 0.05;
+MeshDrivenBasis SelectMeshDrivenBasis(const SystemModel& model, double mesh_frequency_hz);
+
+/// At most this many modes are searched for UndampedModes [-].
+inline constexpr int kMaxUndampedModesListed = 60;
+/// @brief The modes of the mean system with ζ = φᵀC̄φ/(2ω) < 1e-9 (rigid modes excluded), for a
+/// marginal verdict (model_floquet.cpp). Empty when the modal analysis fails.
+std::vector<UndampedMode> UndampedModes(const SystemModel& model);
+
+/// Largest Hill matrix dim·(2H+1) [-]: a complex eigen solve with vectors of this size takes
+/// ≈ 1 s (docs/benchmarks.md "Floquet").
+inline constexpr long kMaxHillSize = 1600;
+/// @brief Throws InvalidInput naming hill_harmonics (requested H) or the method, with the size,
+/// memory and flop count, when dim·(2H+1) > kMaxHillSize.
+void CheckHillSize(int dim, int harmonics, bool requested);
+
 /// @brief What a monodromy kernel returns.
 struct MonodromyOutcome {
   ScaledMatrix phi;  ///< Φ(T) of z
@@ -96,7 +132,20 @@ MatrixX MagnusStepPropagator(const StateSystem& sys, int order, double t0, doubl
 /// repeating pattern of a hunting period made of identical mesh cycles).
 int RepeatingStepPeriod(const std::vector<double>& dt, const std::vector<const MatrixX*>& A,
                         double period_s);
-/// @brief kMagnus with the step count chosen from `tolerance` (Richardson on the multipliers).
+/// Magnus step counts: at most kMaxMagnusSteps per period, at least kMinMagnusSteps, and h‖A‖₁
+/// ≤ kMagnusStepNorm at the start (MagnusStartSteps).
+inline constexpr int kMaxMagnusSteps = 1 << 16;
+inline constexpr int kMinMagnusSteps = 8;
+inline constexpr double kMagnusStepNorm = 1.0;
+/// @brief T·max_t ‖A(t)‖₁ [-] (64 samples of the callback, or every step matrix); adds the
+/// evaluations to *evaluations (may be null). NaN when A has NaN entries.
+double MaxOperatorNormTimesPeriod(const StateSystem& sys, long* evaluations);
+/// @brief The first Magnus step count: ⌈‖A‖T / kMagnusStepNorm⌉, at least kMinMagnusSteps;
+/// kMaxMagnusSteps + 1 when that is above the cap or ‖A‖T is not finite (see magnus.cpp).
+int MagnusStartSteps(double norm_times_period);
+/// @brief kMagnus with the step count chosen from `tolerance` (Richardson on Φ), starting from
+/// MagnusStartSteps and refining past non-finite estimates; not converged (NaN Φ) when the start
+/// count exceeds the cap.
 MonodromyOutcome MagnusMonodromy(const StateSystem& sys, int order, double tolerance);
 /// @brief kOdeStepper: GSL rk8pd on the fundamental matrix, two tolerances.
 MonodromyOutcome OdeMonodromy(const StateSystem& sys, double tolerance);
@@ -106,6 +155,7 @@ struct Spectrum {
   VectorXc multipliers;  ///< sorted by |λ| descending (finite unless they overflow double)
   VectorXc exponents;    ///< μ = ln(λ)/T [1/s]
   double roundoff = 0.0;
+  std::string failure;  ///< non-empty when Φ was not finite or the eigen solver failed (NaN λ)
 };
 /// @brief Eigenvalues of phi with the round-off estimate (see floquet_system.hpp).
 /// `matrix_error`: relative truncation error of Φ added to the round-off δ.
@@ -131,8 +181,28 @@ double MatchedDistance(const VectorXc& a, const VectorXc& b);
 /// @brief Sorts λ by |λ| descending (ties by argument) and fills exponents.
 void SortSpectrum(VectorXc* multipliers, VectorXc* exponents);
 
-/// @brief Fills max|λ|, margin, verdict, status from multipliers and summary.error_estimate, and
-/// the 2r rigid multipliers 1 (appended before sorting).
+/// max(a, b), NaN when either is NaN (std::max drops a NaN second argument).
+double MaxPropagatingNaN(double a, double b);
+/// max|v_i| with NaN propagated (0 for an empty vector).
+double MaxAbsOf(const VectorXc& values);
+
+/// |λ| within this of 1 (or the error estimate, if larger) counts as on the unit circle [-].
+inline constexpr double kMarginalFloor = 1e-12;
+
+/// @brief The verdict rules of FloquetVerdict (floquet.hpp) for these multipliers, exponents and
+/// summary (status, error_estimate); `why` (optional) says why it is undetermined.
+FloquetVerdict DecideVerdict(const Summary& summary, const VectorXc& multipliers,
+                             const VectorXc& exponents, std::string* why);
+/// The verdict of decoupled blocks: unstable if one is, else undetermined if one is, else stable.
+FloquetVerdict CombineVerdicts(FloquetVerdict a, FloquetVerdict b);
+/// The multipliers other than exactly 1 + 0i (the rigid-body ones appended by FinishResult).
+VectorXc WithoutRigid(const VectorXc& multipliers);
+/// Stable with a flexible multiplier within max(error_estimate, kMarginalFloor) of |λ| = 1.
+bool IsMarginal(FloquetVerdict verdict, const VectorXc& flexible, double error_estimate);
+
+/// @brief Fills max|λ| (NaN-propagating), margin, verdict and the marginal flag from the
+/// multipliers, exponents and summary, after appending the 2r rigid multipliers 1 (sorted); the
+/// marginal flag looks at the flexible multipliers only (a rigid mode is neutral by nature).
 void FinishResult(int num_rigid, double tolerance, FloquetResult* result);
 
 /// @brief The generic engine on a StateSystem (no modal projection, no block split).
@@ -150,12 +220,13 @@ FloquetMethod SelectGenericMethod(const PeriodicSecondOrderSystem& system,
 /// @brief Projects a generic system on the M-orthonormal basis V (n × m): M_r = VᵀMV, K_r, C_r.
 PeriodicSecondOrderSystem ProjectSystem(const PeriodicSecondOrderSystem& system, const MatrixX& V);
 
-/// @brief kModalProjection; `modes(m)` returns the lowest m M-orthonormal modes (n × m') of the
-/// mean system. Runs m, ⌈1.5m⌉ and ⌈2.25m⌉ modes (see modal_projection.cpp for the estimate).
+/// @brief kModalProjection; `modes(m)` returns the first m M-orthonormal modes (n × m') of the
+/// basis of the mean system. Runs m, ⌈1.5m⌉ and ⌈2.25m⌉ modes (see modal_projection.cpp for the
+/// estimate); m = options.num_modes, else `initial_modes`, else 12.
 FloquetResult ModalProjectionFloquet(
     const std::function<MatrixX(int)>& modes, int num_dofs,
     const std::function<PeriodicSecondOrderSystem(const MatrixX&)>& project,
-    const FloquetOptions& options);
+    const FloquetOptions& options, int initial_modes = 0);
 
 /// Seconds since `start` (steady clock).
 double SecondsSince(const std::chrono::steady_clock::time_point& start);

@@ -27,8 +27,6 @@
 namespace geardyn::internal {
 namespace {
 
-constexpr int kMaxHillSize = 1600;
-
 VectorXc SelectedExponents(const StateSystem& sys, int H) {
   const int d = sys.dim, size = d * (2 * H + 1);
   const double Omega = 2.0 * std::numbers::pi / sys.period_s;
@@ -49,6 +47,11 @@ VectorXc SelectedExponents(const StateSystem& sys, int H) {
         std::complex<double>(0.0, k * Omega);
   }
   const Eigen::ComplexEigenSolver<MatrixXc> eig(hill, true);
+  if (eig.info() != Eigen::Success) {
+    // NaN exponents: the verdict becomes undetermined (never a default 0 → |λ| = 1).
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return VectorXc::Constant(d, std::complex<double>(nan, nan));
+  }
   const VectorXc& mu = eig.eigenvalues();
   const MatrixXc& Z = eig.eigenvectors();
   std::vector<double> weight(size);
@@ -87,6 +90,10 @@ VectorXc SelectedExponents(const StateSystem& sys, int H) {
     if (!duplicate) chosen.push_back(j);
   }
   VectorXc out(d);
+  if (chosen.empty()) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return VectorXc::Constant(d, std::complex<double>(nan, nan));
+  }
   for (int i = 0; i < d; ++i) out[i] = mu[chosen[std::min(i, static_cast<int>(chosen.size()) - 1)]];
   return out;
 }
@@ -103,20 +110,19 @@ HillOutcome HillExponents(const StateSystem& sys, int harmonics, double toleranc
   GEARDYN_THROW_UNLESS(!sys.harmonics.empty(),
                        "method: hill needs the Fourier harmonics of the coefficients");
   const double T = sys.period_s;
-  const int max_h = std::max(1, (kMaxHillSize / std::max(sys.dim, 1) - 1) / 2);
+  const int max_h = std::max(1, static_cast<int>((kMaxHillSize / std::max(sys.dim, 1) - 1) / 2));
   HillOutcome out;
   if (harmonics > 0) {
-    GEARDYN_THROW_UNLESS(sys.dim * (2 * harmonics + 1) <= 4 * kMaxHillSize,
-                         "hill_harmonics: " << harmonics << " makes a Hill matrix of size "
-                                            << sys.dim * (2 * harmonics + 1) << " (> "
-                                            << 4 * kMaxHillSize << ")");
     const int lower = std::max(1, static_cast<int>(std::lround(harmonics / 1.5)));
+    // The estimate's second solve uses H + 1 when round(H/1.5) = H.
+    CheckHillSize(sys.dim, lower == harmonics ? harmonics + 1 : harmonics, true);
     out.exponents = SelectedExponents(sys, harmonics);
     out.harmonics = harmonics;
     const VectorXc coarse = SelectedExponents(sys, lower == harmonics ? harmonics + 1 : lower);
     out.truncation_error =
         MatchedDistance(MultipliersOf(out.exponents, T), MultipliersOf(coarse, T));
   } else {
+    CheckHillSize(sys.dim, 4, false);  // the smallest H of the ladder
     int H = 4;
     VectorXc previous = SelectedExponents(sys, H);
     while (true) {

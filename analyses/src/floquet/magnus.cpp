@@ -11,6 +11,7 @@
 // normalized (ScaledMatrix) so that long periods do not overflow.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "floquet/floquet_internal.hpp"
@@ -18,6 +19,8 @@
 
 namespace geardyn::internal {
 namespace {
+
+double p_of(int order) { return static_cast<double>(order); }
 
 inline MatrixX Commutator(const MatrixX& X, const MatrixX& Y) {
   MatrixX Z = X * Y;
@@ -71,23 +74,73 @@ MonodromyOutcome MagnusMonodromyFixed(const StateSystem& sys, int order, int ste
   return out;
 }
 
+double MaxOperatorNormTimesPeriod(const StateSystem& sys, long* evaluations) {
+  // max ‖A(t)‖₁ (an upper bound of the spectral norm's growth rate up to √dim, and of the
+  // spectral radius) over 4 samples per Gauss node spacing of a 16-step grid: the coefficients
+  // vary on the mesh period, which this resolves; the step matrices when A is piecewise constant.
+  double worst = 0.0;
+  if (!sys.step_matrices.empty()) {
+    for (const MatrixX& A : sys.step_matrices) {
+      worst = MaxPropagatingNaN(worst, A.cwiseAbs().colwise().sum().maxCoeff());
+    }
+  } else if (sys.evaluate) {
+    constexpr int kSamples = 64;
+    MatrixX A(sys.dim, sys.dim);
+    for (int j = 0; j < kSamples; ++j) {
+      sys.evaluate(sys.period_s * (j + 0.5) / kSamples, &A);
+      worst = MaxPropagatingNaN(worst, A.cwiseAbs().colwise().sum().maxCoeff());
+      if (evaluations != nullptr) ++*evaluations;
+    }
+  }
+  return worst * sys.period_s;
+}
+
+int MagnusStartSteps(double norm_times_period) {
+  // The Magnus series converges for ∫‖A‖dt < π over a step (Moan & Niesen, Found. Comput. Math.
+  // 8 (2008) 291–301); the truncation error of the order-p method is O((h‖A‖)^{p+1}) per step,
+  // so only h‖A‖ ≤ 1 puts every step well inside the radius with a leading term that decays.
+  // Below that count the step-doubling estimate compares two diverging series and can be
+  // non-finite or meaninglessly small (issue 12: low speed, stiff bearings).
+  if (!std::isfinite(norm_times_period)) return kMaxMagnusSteps + 1;
+  const double n = std::ceil(norm_times_period / kMagnusStepNorm);
+  if (n > kMaxMagnusSteps) return kMaxMagnusSteps + 1;
+  return std::max(kMinMagnusSteps, static_cast<int>(n));
+}
+
 MonodromyOutcome MagnusMonodromy(const StateSystem& sys, int order, double tolerance) {
   // Richardson on Φ: with N₁ < N₂ steps, e(N₂) ≈ ‖Φ(N₂) − Φ(N₁)‖/‖Φ‖ / ((N₂/N₁)^p − 1). The
   // criterion is on the matrix, not on the multipliers, which are only √-conditioned where two
   // of them meet (transition curves); SpectrumOf turns e into the multiplier estimate.
-  constexpr int kMaxSteps = 1 << 16;
-  const double p = order;
-  int n1 = 8;
+  long probe_evaluations = 0;
+  const double norm_T = MaxOperatorNormTimesPeriod(sys, &probe_evaluations);
+  int n1 = MagnusStartSteps(norm_T);
+  if (n1 > kMaxMagnusSteps) {
+    MonodromyOutcome out;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    out.phi = ScaledMatrix{MatrixX::Constant(sys.dim, sys.dim, nan), 0.0};
+    out.truncation_error = nan;
+    out.evaluations = probe_evaluations;
+    out.converged = false;
+    out.message = "magnus: max‖A‖₁·T = " + std::to_string(norm_T) + " needs more than " +
+                  std::to_string(kMaxMagnusSteps) +
+                  " steps per period (h‖A‖ ≤ 1); not attempted (the system is too stiff for "
+                  "the period: use exact_steps for piecewise-constant coefficients)";
+    return out;
+  }
+  n1 = std::min(n1, kMaxMagnusSteps / 2);  // room for one doubling (h‖A‖ ≤ 2 < π still)
   MonodromyOutcome coarse = MagnusMonodromyFixed(sys, order, n1);
-  int n2 = 2 * n1;
-  long evaluations = coarse.evaluations;
+  int n2 = std::min(kMaxMagnusSteps, 2 * n1);
+  long evaluations = coarse.evaluations + probe_evaluations;
   while (true) {
     MonodromyOutcome fine = MagnusMonodromyFixed(sys, order, n2);
     evaluations += fine.evaluations;
     const double ratio = static_cast<double>(n2) / n1;
-    const double err = RelativeDifference(fine.phi, coarse.phi) / (std::pow(ratio, p) - 1.0);
-    if (err <= tolerance || n2 >= kMaxSteps || !std::isfinite(err)) {
-      fine.truncation_error = err;
+    // A non-finite difference (an overflowing coarse run) is "not converged", never "done".
+    const double err = ratio > 1.0 ? RelativeDifference(fine.phi, coarse.phi) /
+                                         (std::pow(ratio, p_of(order)) - 1.0)
+                                   : std::numeric_limits<double>::infinity();
+    if (err <= tolerance || n2 >= kMaxMagnusSteps) {
+      fine.truncation_error = std::isnan(err) ? std::numeric_limits<double>::infinity() : err;
       fine.evaluations = evaluations;
       if (!(err <= tolerance)) {
         fine.converged = false;
@@ -96,11 +149,15 @@ MonodromyOutcome MagnusMonodromy(const StateSystem& sys, int order, double toler
       }
       return fine;
     }
-    // Next count from the asymptotic model e ∝ N^−p (with a safety factor), ×1.5 … ×16.
-    const double grow = std::clamp(1.2 * std::pow(err / tolerance, 1.0 / p), 1.5, 16.0);
+    // Next count from the asymptotic model e ∝ N^−p (with a safety factor), ×1.5 … ×16; ×4 past
+    // a non-finite estimate.
+    const double grow =
+        std::isfinite(err)
+            ? std::clamp(1.2 * std::pow(err / tolerance, 1.0 / p_of(order)), 1.5, 16.0)
+            : 4.0;
     n1 = n2;
     coarse = std::move(fine);
-    n2 = std::min(kMaxSteps, static_cast<int>(std::ceil(n2 * grow)));
+    n2 = static_cast<int>(std::min<double>(kMaxMagnusSteps, std::ceil(n2 * grow)));
   }
 }
 

@@ -18,8 +18,11 @@
 // continuations in the m₂ run; all 2n when m₂ = n (a complete basis, a change of variables:
 // estimate 0 from the projection). Multipliers of the discarded high modes are not reported:
 // parametric resonances that involve them (ω_m ≈ 2ω_k/j with ω_k above the retained range) are
-// outside the estimate. num_modes = 0: m = 12, then the window moves up one level (m₀ ← m₁) until
-// the estimate meets the tolerance or m₂ = n.
+// outside the estimate — hence the SystemModel entry's automatic basis (num_modes = 0,
+// internal::SelectMeshDrivenBasis in model_floquet.cpp, issue 12) puts first every mode below
+// 2.25 f_m and every mode with ≥ 5 % of its strain energy in a mesh, and starts with m₀ = their
+// number (the generic entry: m₀ = 12); then the window moves up one level (m₀ ← m₁) until the
+// estimate meets the tolerance or m₂ = n. A NaN estimate stops the widening (undetermined).
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -90,7 +93,7 @@ constexpr double kSafetyFactor = 4.0;  // see the file comment
 FloquetResult ModalProjectionFloquet(
     const std::function<MatrixX(int)>& modes, int num_dofs,
     const std::function<PeriodicSecondOrderSystem(const MatrixX&)>& project,
-    const FloquetOptions& options) {
+    const FloquetOptions& options, int initial_modes) {
   FloquetOptions inner = options;
   inner.method = FloquetMethod::kAuto;
   inner.modal_projection_min_dofs = num_dofs + 1;  // never recurse
@@ -106,7 +109,9 @@ FloquetResult ModalProjectionFloquet(
   auto next = [num_dofs](int m) {
     return std::min(num_dofs, std::max(m + 1, static_cast<int>(std::ceil(1.5 * m))));
   };
-  int m0 = options.num_modes > 0 ? std::min(options.num_modes, num_dofs) : std::min(12, num_dofs);
+  int m0 = options.num_modes > 0 ? std::min(options.num_modes, num_dofs)
+           : initial_modes > 0   ? std::min(initial_modes, num_dofs)
+                                 : std::min(12, num_dofs);
   int m1 = next(m0), m2 = next(m1);
   FloquetResult r0 = run(m0);
   FloquetResult r1 = m1 > m0 ? run(m1) : r0;
@@ -120,31 +125,38 @@ FloquetResult ModalProjectionFloquet(
     if (!complete) {
       Continue(r0.multipliers, r1, &l1, &e1);
       Continue(l1, r2, &l2, &e2);
-      const double d1 = (r0.multipliers - l1).cwiseAbs().maxCoeff();
-      const double d2 = (l1 - l2).cwiseAbs().maxCoeff();
-      est = kSafetyFactor * std::max(d1, d2);
+      const double d1 = MaxAbsOf(r0.multipliers - l1);
+      const double d2 = MaxAbsOf(l1 - l2);
+      est = kSafetyFactor * MaxPropagatingNaN(d1, d2);
     }
-    if (options.num_modes > 0 || est <= options.tolerance || complete) {
+    // A NaN estimate stops the widening too (the verdict is then undetermined).
+    if (options.num_modes > 0 || !(est > options.tolerance) || complete) {
       FloquetResult out = std::move(r2);
       if (!complete) {
         out.multipliers = l2;
         out.exponents = e2;
       }
       SortSpectrum(&out.multipliers, &out.exponents);
-      out.max_abs_multiplier = out.multipliers.size() ? out.multipliers.cwiseAbs().maxCoeff() : 0.0;
+      out.max_abs_multiplier = MaxAbsOf(out.multipliers);
       out.stability_margin = 1.0 - out.max_abs_multiplier;
-      out.summary.error_estimate = std::max(out.summary.error_estimate, est);
+      out.summary.error_estimate = MaxPropagatingNaN(out.summary.error_estimate, est);
       out.summary.counters["modes"] = m0;
       out.summary.counters["modes_check"] = m2;
       out.summary.counters["projection_runs"] = runs;
       out.method_used = FloquetMethod::kModalProjection;
-      if (est > options.tolerance && out.summary.ok()) {
+      if (!(est <= options.tolerance) && out.summary.ok()) {
         out.summary.status = Status::kToleranceNotMet;
         out.summary.message = "modal_projection: estimated multiplier error " +
                               std::to_string(est) + " with " + std::to_string(m0) + "/" +
                               std::to_string(m1) + "/" + std::to_string(m2) + " modes";
       }
-      out.stable = out.max_abs_multiplier <= 1.0 + out.summary.error_estimate;
+      std::string why;
+      out.verdict = DecideVerdict(out.summary, out.multipliers, out.exponents, &why);
+      if (out.verdict == FloquetVerdict::kUndetermined) {
+        out.summary.warnings.push_back("verdict undetermined: " + why);
+      }
+      out.marginal =
+          IsMarginal(out.verdict, WithoutRigid(out.multipliers), out.summary.error_estimate);
       return out;
     }
     m0 = m1;

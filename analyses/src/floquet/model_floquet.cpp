@@ -10,6 +10,7 @@
 #include "floquet/floquet_internal.hpp"
 #include "geardyn/analyses/modal.hpp"
 #include "geardyn/common/check.hpp"
+#include "geardyn/common/errors.hpp"
 #include "geardyn/system/system_harmonics.hpp"
 #include "geardyn/system/system_steps.hpp"
 #include "geardyn/system/workspace.hpp"
@@ -18,7 +19,7 @@ namespace geardyn {
 namespace internal {
 namespace {
 
-constexpr int kMaxHillSize = 1600;  // as hill.cpp: adaptive H stops at dim·(2H+1) ≤ this
+constexpr std::int64_t kMaxHillExpansion = 1 << 16;  // system harmonics expanded for Hill
 
 // V ᵀ X V for the model's K(θ) and C(θ) in either storage.
 struct ModelAssembler {
@@ -52,7 +53,8 @@ struct ModelAssembler {
   }
 };
 
-// The model (projected on V if nonempty) as a generic system with the forms the method needs.
+// The model (projected on V if nonempty) as a generic system with the forms the method needs,
+// over the operator period P_K (OperatorPeriodMeshes), not the hunting period of ε.
 PeriodicSecondOrderSystem MakeModelSystem(const SystemModel& model, double omega_m,
                                           FloquetMethod method, int hill_harmonics,
                                           const MatrixX& V) {
@@ -61,7 +63,8 @@ PeriodicSecondOrderSystem MakeModelSystem(const SystemModel& model, double omega
   const StorageKind storage = projected ? model.storage_hint() : StorageKind::kDense;
   const auto assembler = std::make_shared<ModelAssembler>(model, storage);
   PeriodicSecondOrderSystem s;
-  const double P = static_cast<double>(model.period_meshes());
+  const std::int64_t operator_period = OperatorPeriodMeshes(model);
+  const double P = static_cast<double>(operator_period);
   s.period_s = 2.0 * std::numbers::pi * P / omega_m;
   if (projected) {
     s.mass = V.transpose() * (model.mass() * V);
@@ -70,7 +73,7 @@ PeriodicSecondOrderSystem MakeModelSystem(const SystemModel& model, double omega
     s.mass = model.DenseMass();
   }
   if ((piecewise || method == FloquetMethod::kExactSteps) && method != FloquetMethod::kHill) {
-    const SystemSteps steps = CollectSystemSteps(model);
+    const SystemSteps steps = OperatorSteps(model, operator_period);
     for (int k = 0; k < steps.num_intervals(); ++k) {
       PeriodicStep step;
       step.duration_s = steps.interval_width(k) / omega_m;
@@ -85,10 +88,21 @@ PeriodicSecondOrderSystem MakeModelSystem(const SystemModel& model, double omega
   }
   if (method == FloquetMethod::kHill) {
     const int dim = 2 * (projected ? static_cast<int>(V.cols()) : model.num_dofs());
-    const int H = hill_harmonics > 0 ? hill_harmonics : std::max(1, (kMaxHillSize / dim - 1) / 2);
-    const SystemHarmonics h = ExpandSystemHarmonics(model, 2 * H);
+    const int H = hill_harmonics > 0 ? hill_harmonics : std::max(1, static_cast<int>((kMaxHillSize / dim - 1) / 2));
+    CheckHillSize(dim, H, hill_harmonics > 0);
+    // System harmonic m·q (q = P/P_K) is harmonic m of the operator period; the others are
+    // harmonics of ε only (the load), which Hill does not see.
+    const std::int64_t q = model.period_meshes() / operator_period;
+    GEARDYN_THROW_UNLESS(2 * H * q <= kMaxHillExpansion,
+                         "method: hill needs " << 2 * H << " harmonics of the operator period, "
+                                               << 2 * H * q << " of the model's period of "
+                                               << model.period_meshes() << " meshes (at most "
+                                               << kMaxHillExpansion
+                                               << "); use exact_steps, magnus or ode_stepper");
+    const SystemHarmonics h = ExpandSystemHarmonics(model, static_cast<int>(2 * H * q));
     const MatrixXc Vc = V.cast<std::complex<double>>();
-    for (int m = 0; m <= h.num_harmonics(); ++m) {
+    for (std::int64_t mq = 0; mq <= h.num_harmonics(); mq += q) {
+      const auto m = static_cast<std::size_t>(mq);
       s.stiffness_harmonics.push_back(projected ? MatrixXc(Vc.transpose() * h.stiffness[m] * Vc)
                                                 : h.stiffness[m]);
       s.damping_harmonics.push_back(projected ? MatrixXc(Vc.transpose() * h.damping[m] * Vc)
@@ -107,6 +121,13 @@ FloquetResult ComputeModelFloquet(const SystemModel& model, const FloquetOptions
     const FloquetMethod inner =
         HasPiecewiseConstantOperator(model) ? FloquetMethod::kExactSteps : FloquetMethod::kMagnus;
     MatrixX cached;  // modes computed once for the largest m asked so far
+    int initial = 0;
+    if (options.num_modes == 0) {
+      // Automatic basis: the modes that drive the parametric resonances at this f_m first.
+      const MeshDrivenBasis basis = SelectMeshDrivenBasis(model, options.mesh_frequency_hz);
+      cached = basis.modes;
+      initial = basis.num_priority;
+    }
     auto modes = [&](int m) {
       if (cached.cols() < m) {
         ModalOptions mo;
@@ -124,7 +145,8 @@ FloquetResult ComputeModelFloquet(const SystemModel& model, const FloquetOptions
     };
     FloquetResult r = ModalProjectionFloquet(
         modes, n, [&](const MatrixX& V) { return MakeModelSystem(model, omega_m, inner, 0, V); },
-        options);
+        options, initial);
+    if (initial > 0) r.summary.counters["modes_priority"] = initial;
     return r;
   }
   const PeriodicSecondOrderSystem system =
@@ -134,6 +156,93 @@ FloquetResult ComputeModelFloquet(const SystemModel& model, const FloquetOptions
 }
 
 }  // namespace
+
+MeshDrivenBasis SelectMeshDrivenBasis(const SystemModel& model, double mesh_frequency_hz) {
+  const int n = model.num_dofs();
+  ModalOptions mo;
+  mo.num_modes = std::min(n, kMaxBasisModes);
+  if (mo.num_modes >= n) mo.method = ModalMethod::kDense;
+  mo.compute_shapes = true;
+  mo.compute_energy_fractions = true;  // the mesh strain-energy fractions
+  const ModalResult r = ComputeModes(model, mo);
+  GEARDYN_THROW_UNLESS(
+      r.summary.ok() || r.shapes.cols() > 0,
+      "modal_projection: the modes of the mean system failed: " << r.summary.message);
+  const int m = static_cast<int>(r.shapes.cols());
+  // Principal resonances f_m = 2 f_p / k put f_p = k f_m / 2; sum combinations f_m = (f_p+f_q)/k
+  // with f_p ≪ f_q put f_q ≤ k f_m. Cover k ≤ kBasisResonanceOrder of the principal ones with
+  // the margin kBasisFrequencyMargin: f_p ≤ 1.5 · 3 · f_m / 2 = 2.25 f_m (this also covers the
+  // k = 1, 2 sum combinations). Modes above that which store a share ≥ kMeshStrainShare of their
+  // strain energy in a mesh are added: they carry the mesh stiffness variation (the "mesh
+  // modes" of a stiff gear pair, often far above f_m) and their couplings to the low modes.
+  const double cover = kBasisFrequencyMargin * kBasisResonanceOrder * mesh_frequency_hz / 2.0;
+  std::vector<int> mesh_columns;
+  for (std::size_t c = 0; c < r.strain_names.size(); ++c) {
+    if (r.strain_names[c].rfind("mesh:", 0) == 0) mesh_columns.push_back(static_cast<int>(c));
+  }
+  std::vector<int> priority, rest;
+  for (int k = 0; k < m; ++k) {
+    double mesh_share = 0.0;
+    for (const int c : mesh_columns) {
+      if (r.strain_fractions.rows() > k) mesh_share += r.strain_fractions(k, c);
+    }
+    const bool wanted = r.frequencies_hz[k] <= cover || mesh_share >= kMeshStrainShare;
+    (wanted ? priority : rest).push_back(k);
+  }
+  MeshDrivenBasis out;
+  out.num_priority = std::max(static_cast<int>(priority.size()), std::min(12, m));
+  out.modes.resize(n, m);
+  int col = 0;
+  for (const int k : priority) out.modes.col(col++) = r.shapes.col(k);
+  for (const int k : rest) out.modes.col(col++) = r.shapes.col(k);
+  return out;
+}
+
+std::vector<UndampedMode> UndampedModes(const SystemModel& model) {
+  // Modes of the mean system (K̄, M) with ζ = φᵀC̄φ/(2ω) below kUndampedRatio: their
+  // multipliers sit on the unit circle whatever the speed (outside the parametric resonances).
+  constexpr double kUndampedRatio = 1e-9;
+  ModalOptions mo;
+  mo.compute_shapes = true;
+  mo.compute_energy_fractions = false;
+  mo.num_modes = std::min(model.num_dofs(), kMaxUndampedModesListed);
+  if (mo.num_modes >= model.num_dofs()) mo.method = ModalMethod::kDense;
+  std::vector<UndampedMode> out;
+  ModalResult r;
+  try {
+    r = ComputeModes(model, mo);
+  } catch (const InvalidInput&) {
+    return out;  // the list is a diagnostic; the verdict does not depend on it
+  }
+  if (r.shapes.cols() == 0) return out;
+  // Mean damping C̄ (the θ-mean over one operator period by the midpoint rule on 64 samples;
+  // exact for piecewise-constant damping with breakpoints on the samples, a diagnostic else).
+  SystemWorkspace ws(model, StorageKind::kDense);
+  const int n = model.num_dofs();
+  MatrixX C = MatrixX::Zero(n, n);
+  constexpr int kSamples = 64;
+  const double period = 2.0 * std::numbers::pi * static_cast<double>(OperatorPeriodMeshes(model));
+  for (int j = 0; j < kSamples; ++j) {
+    C += AssembleDamping(model, ws, period * (j + 0.5) / kSamples) / kSamples;
+  }
+  const MatrixX M = model.DenseMass();
+  for (int k = 0; k < r.shapes.cols(); ++k) {
+    const double f = r.frequencies_hz[k];
+    if (!(f > 0.0)) continue;  // rigid-body modes are deflated, not "undamped"
+    const VectorX phi = r.shapes.col(k);
+    const double zeta = phi.dot(C * phi) / (2.0 * 2.0 * std::numbers::pi * f);
+    if (!(std::abs(zeta) < kUndampedRatio)) continue;
+    Eigen::Index dof = 0;
+    (phi.array().square() * M.diagonal().array()).maxCoeff(&dof);
+    UndampedMode m;
+    m.index = k;
+    m.frequency_hz = f;
+    m.damping_ratio = zeta;
+    m.dominant_dof = model.dof_map().dof_name(static_cast<int>(dof));
+    out.push_back(std::move(m));
+  }
+  return out;
+}
 
 FloquetMethod SelectFloquetMethod(const SystemModel& model, const FloquetOptions& options) {
   if (options.method != FloquetMethod::kAuto) return options.method;
@@ -191,7 +300,7 @@ FloquetResult ComputeFloquet(const SystemModel& model, const FloquetOptions& opt
       result.exponents.segment(at, k) = p.exponents;
       at += k;
       result.summary.error_estimate =
-          std::max(result.summary.error_estimate, p.summary.error_estimate);
+          internal::MaxPropagatingNaN(result.summary.error_estimate, p.summary.error_estimate);
       for (const auto& [name, value] : p.summary.counters) result.summary.counters[name] += value;
       for (const std::string& w : p.summary.warnings) {
         result.summary.warnings.push_back("block " + std::to_string(b) + ": " + w);
@@ -219,10 +328,22 @@ FloquetResult ComputeFloquet(const SystemModel& model, const FloquetOptions& opt
     result.summary.counters["blocks"] = num_blocks;
     internal::SortSpectrum(&result.multipliers, &result.exponents);
     internal::FinishResult(0, options.tolerance, &result);
+    // The blocks' own verdicts (each with its own status and estimate), combined.
+    result.verdict = parts[0].verdict;
+    bool marginal = parts[0].marginal;
+    for (int b = 1; b < num_blocks; ++b) {
+      result.verdict = internal::CombineVerdicts(result.verdict, parts[b].verdict);
+      marginal = marginal || parts[b].marginal;
+    }
+    result.marginal = result.verdict == FloquetVerdict::kStable && marginal;
   }
+  if (result.marginal) result.undamped_modes = internal::UndampedModes(model);
   for (const std::string& w : warnings) result.summary.warnings.push_back(w);
-  result.period_meshes = model.period_meshes();
+  result.period_meshes = internal::OperatorPeriodMeshes(model);
   result.period_s = static_cast<double>(result.period_meshes) / options.mesh_frequency_hz;
+  if (result.period_meshes != model.period_meshes()) {
+    result.summary.counters["load_period_meshes"] = model.period_meshes();
+  }
   result.summary.wall_time_s = internal::SecondsSince(start);
   return result;
 }

@@ -25,7 +25,24 @@ Spectrum SpectrumOf(const ScaledMatrix& phi, double period_s, double num_factors
   Spectrum out;
   const int N = static_cast<int>(phi.matrix.rows());
   if (N == 0) return out;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (!phi.matrix.allFinite() || !std::isfinite(phi.log_scale)) {
+    // A failed propagation: NaN multipliers (the verdict is then undetermined), never zeros.
+    out.multipliers = VectorXc::Constant(N, std::complex<double>(nan, nan));
+    out.exponents = out.multipliers;
+    out.roundoff = nan;
+    out.failure = "the monodromy has non-finite entries";
+    return out;
+  }
   const Eigen::EigenSolver<MatrixX> eig(phi.matrix, true);
+  if (eig.info() != Eigen::Success) {
+    out.multipliers = VectorXc::Constant(N, std::complex<double>(nan, nan));
+    out.exponents = out.multipliers;
+    out.roundoff = nan;
+    out.failure = "the eigenvalue solver of the monodromy did not converge (Eigen info " +
+                  std::to_string(static_cast<int>(eig.info())) + ")";
+    return out;
+  }
   const VectorXc values = eig.eigenvalues();
   const MatrixXc V = eig.eigenvectors();
   const MatrixXc Vinv = V.fullPivLu().inverse();
@@ -41,7 +58,7 @@ Spectrum SpectrumOf(const ScaledMatrix& phi, double period_s, double num_factors
   for (int i = 0; i < N; ++i) {
     double kappa = V.col(i).norm() * Vinv.row(i).norm();
     if (!std::isfinite(kappa)) kappa = std::numeric_limits<double>::infinity();
-    roundoff = std::max(roundoff, std::min(kappa * delta, std::sqrt(delta * norm)));
+    roundoff = MaxPropagatingNaN(roundoff, std::min(kappa * delta, std::sqrt(delta * norm)));
     const double mod = std::abs(values[i]);
     const double arg = std::arg(values[i]);
     const double log_mod =
@@ -94,7 +111,83 @@ double MatchedDistance(const VectorXc& a, const VectorXc& b) {
   return worst;
 }
 
+double MaxPropagatingNaN(double a, double b) {
+  if (std::isnan(a) || std::isnan(b)) return std::numeric_limits<double>::quiet_NaN();
+  return std::max(a, b);
+}
+
+double MaxAbsOf(const VectorXc& values) {
+  double m = 0.0;
+  for (const std::complex<double>& v : values) m = MaxPropagatingNaN(m, std::abs(v));
+  return m;
+}
+
+FloquetVerdict DecideVerdict(const Summary& summary, const VectorXc& multipliers,
+                             const VectorXc& exponents, std::string* why) {
+  const double e = summary.error_estimate;
+  const double max_abs = MaxAbsOf(multipliers);
+  // Non-finite |λ| is an honest answer only as an overflowing growth: its exponent (computed
+  // from the scaled monodromy, floquet_internal.hpp SpectrumOf) must be finite.
+  bool broken = std::isnan(max_abs) || !std::isfinite(e) || std::isnan(e);
+  bool overflow = false;
+  for (Eigen::Index i = 0; i < multipliers.size() && !broken; ++i) {
+    if (std::isfinite(std::abs(multipliers[i]))) continue;
+    const bool exponent_ok = i < exponents.size() && std::isfinite(exponents[i].real()) &&
+                             std::isfinite(exponents[i].imag()) && exponents[i].real() > 0.0;
+    if (exponent_ok) {
+      overflow = true;
+    } else {
+      broken = true;
+    }
+  }
+  const bool usable =
+      summary.status == Status::kSuccess || summary.status == Status::kToleranceNotMet;
+  if (broken || !usable) {
+    if (why != nullptr) {
+      *why = broken ? "non-finite multipliers or error estimate"
+                    : std::string("status ") + StatusName(summary.status);
+    }
+    return FloquetVerdict::kUndetermined;
+  }
+  // Unstable beyond the estimated error: decisive even when the tolerance was missed.
+  if (overflow || max_abs - e > 1.0) return FloquetVerdict::kUnstable;
+  if (summary.status != Status::kSuccess) {
+    if (why != nullptr) {
+      *why = "max|λ| − 1 is within the error estimate and the tolerance was not met";
+    }
+    return FloquetVerdict::kUndetermined;
+  }
+  return FloquetVerdict::kStable;
+}
+
+FloquetVerdict CombineVerdicts(FloquetVerdict a, FloquetVerdict b) {
+  // One unstable block makes the system unstable; otherwise one unknown block leaves it unknown.
+  if (a == FloquetVerdict::kUnstable || b == FloquetVerdict::kUnstable) {
+    return FloquetVerdict::kUnstable;
+  }
+  if (a == FloquetVerdict::kUndetermined || b == FloquetVerdict::kUndetermined) {
+    return FloquetVerdict::kUndetermined;
+  }
+  return FloquetVerdict::kStable;
+}
+
+VectorXc WithoutRigid(const VectorXc& multipliers) {
+  VectorXc out(multipliers.size());
+  Eigen::Index k = 0;
+  for (const std::complex<double>& l : multipliers) {
+    if (l != std::complex<double>(1.0, 0.0)) out[k++] = l;
+  }
+  return out.head(k);
+}
+
+bool IsMarginal(FloquetVerdict verdict, const VectorXc& flexible, double error_estimate) {
+  if (verdict != FloquetVerdict::kStable || flexible.size() == 0) return false;
+  return 1.0 - MaxAbsOf(flexible) <= std::max(error_estimate, kMarginalFloor);
+}
+
 void FinishResult(int num_rigid, double tolerance, FloquetResult* result) {
+  const bool marginal_flexible =
+      IsMarginal(FloquetVerdict::kStable, result->multipliers, result->summary.error_estimate);
   if (num_rigid > 0) {
     const int N = static_cast<int>(result->multipliers.size());
     result->multipliers.conservativeResize(N + 2 * num_rigid);
@@ -103,17 +196,37 @@ void FinishResult(int num_rigid, double tolerance, FloquetResult* result) {
     result->exponents.tail(2 * num_rigid).setZero();
     SortSpectrum(&result->multipliers, &result->exponents);
   }
-  result->max_abs_multiplier =
-      result->multipliers.size() ? result->multipliers.cwiseAbs().maxCoeff() : 0.0;
-  if (result->exponents.size() && !std::isfinite(result->max_abs_multiplier)) {
+  result->max_abs_multiplier = MaxAbsOf(result->multipliers);
+  if (result->exponents.size() && std::isinf(result->max_abs_multiplier)) {
     result->summary.warnings.push_back(
         "multipliers overflow double (max Re(mu) T = " +
         std::to_string(result->exponents.real().maxCoeff() * result->period_s) +
         "); the exponents are exact");
   }
   result->stability_margin = 1.0 - result->max_abs_multiplier;
-  result->stable = result->max_abs_multiplier <= 1.0 + result->summary.error_estimate;
+  std::string why;
+  result->verdict = DecideVerdict(result->summary, result->multipliers, result->exponents, &why);
+  result->marginal = result->verdict == FloquetVerdict::kStable && marginal_flexible;
+  if (result->verdict == FloquetVerdict::kUndetermined) {
+    result->summary.warnings.push_back("verdict undetermined: " + why);
+  }
   (void)tolerance;
 }
 
 }  // namespace geardyn::internal
+
+namespace geardyn {
+
+const char* ToString(FloquetVerdict verdict) {
+  switch (verdict) {
+    case FloquetVerdict::kStable:
+      return "stable";
+    case FloquetVerdict::kUnstable:
+      return "unstable";
+    case FloquetVerdict::kUndetermined:
+      return "undetermined";
+  }
+  return "unknown";
+}
+
+}  // namespace geardyn

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "floquet/floquet_internal.hpp"
 #include "geardyn/common/check.hpp"
@@ -57,9 +58,13 @@ bool Integrate(const StateSystem& sys, double eps, MonodromyOutcome* out) {
   }
   double t = 0.0;
   out->phi = ScaledMatrix{MatrixX::Identity(N, N), 0.0};
+  // First trial step h‖A‖₁ ≤ 1 (as the Magnus start, magnus.cpp): rk8pd's stability region
+  // reaches |hλ| ≈ 5, so a larger first step is rejected anyway; the controller then adapts.
+  const double norm = MaxOperatorNormTimesPeriod(sys, nullptr) / sys.period_s;
+  const double h_norm = norm > 0.0 && std::isfinite(norm) ? 1.0 / norm : sys.period_s;
   for (std::size_t k = 0; k < ends.size(); ++k) {
     ctx.constant = piecewise ? &sys.step_matrices[k] : nullptr;
-    const double h0 = std::min(ends[k] - t, sys.period_s / 64.0);
+    const double h0 = std::min({ends[k] - t, sys.period_s / 64.0, h_norm});
     gsl_odeiv2_driver* driver =
         gsl_odeiv2_driver_alloc_y_new(&ode, gsl_odeiv2_step_rk8pd, h0, eps, eps);
     gsl_odeiv2_driver_set_nmax(driver, 50'000'000);
@@ -72,6 +77,11 @@ bool Integrate(const StateSystem& sys, double eps, MonodromyOutcome* out) {
                      " s: " + gsl_strerror(status);
       return false;
     }
+  }
+  if (!Z.allFinite()) {
+    out->converged = false;
+    out->message = "ode_stepper: the fundamental matrix has non-finite entries";
+    return false;
   }
   out->phi.matrix = Z;
   out->phi.Normalize();
@@ -92,8 +102,11 @@ MonodromyOutcome OdeMonodromy(const StateSystem& sys, double tolerance) {
   const bool ok = Integrate(sys, eps1, &loose) && Integrate(sys, eps2, &tight);
   gsl_set_error_handler(old);
   if (!ok) {
+    // NaN, never the identity: a failed run must not read as |λ| = 1 (stable).
     MonodromyOutcome& failed = loose.converged ? tight : loose;
-    failed.phi = ScaledMatrix{MatrixX::Identity(sys.dim, sys.dim), 0.0};
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    failed.phi = ScaledMatrix{MatrixX::Constant(sys.dim, sys.dim, nan), 0.0};
+    failed.truncation_error = nan;
     return failed;
   }
   tight.truncation_error = RelativeDifference(loose.phi, tight.phi);

@@ -66,8 +66,8 @@ FloquetResult ComputeFloquetState(const StateSystem& sys, const FloquetOptions& 
     result.multipliers = spectrum.multipliers;
     result.exponents = spectrum.exponents;
     truncation = spectrum.roundoff;  // round-off and truncation (SpectrumOf)
-    converged = mono.converged;
-    message = mono.message;
+    converged = mono.converged && spectrum.failure.empty();
+    message = !mono.converged ? mono.message : spectrum.failure;
     result.summary.counters["steps"] = mono.steps;
     result.summary.counters["evaluations"] = mono.evaluations;
     if (options.keep_monodromy) {
@@ -83,10 +83,18 @@ FloquetResult ComputeFloquetState(const StateSystem& sys, const FloquetOptions& 
     result.summary.status = Status::kToleranceNotMet;
     result.summary.message = message;
   }
-  if (!result.multipliers.allFinite() && result.summary.ok()) {
-    if (!std::isfinite(result.exponents.real().maxCoeff()) || !result.exponents.allFinite()) {
+  // An overflowing |λ| with finite exponents is an answer (a fast growth); a NaN or an infinite
+  // exponent is a failure, whatever the convergence said.
+  if (!result.exponents.allFinite() || !result.multipliers.allFinite()) {
+    bool failed = !result.exponents.allFinite();
+    for (Eigen::Index i = 0; i < result.multipliers.size(); ++i) {
+      failed = failed || std::isnan(result.multipliers[i].real()) ||
+               std::isnan(result.multipliers[i].imag());
+    }
+    if (failed && result.summary.status != Status::kNumericalIssue) {
       result.summary.status = Status::kNumericalIssue;
-      result.summary.message = "non-finite multipliers (the monodromy has non-finite entries)";
+      result.summary.message =
+          "non-finite multipliers" + (message.empty() ? std::string() : " (" + message + ")");
     }
   }
   FinishResult(sys.num_rigid, options.tolerance, &result);

@@ -155,7 +155,10 @@ StabilityChartResult ComputeStabilityChart(const ChartAxis& x, const ChartAxis& 
         const int ix = static_cast<int>(i % x.num_points);
         const int iy = static_cast<int>(i / x.num_points);
         const ChartPointResult r = evaluators[thread](ChartPoint{x.Value(ix), y.Value(iy), ix, iy});
-        const bool ok = r.ok && std::isfinite(r.max_abs_multiplier);
+        // Undetermined: the evaluator says so, or max|λ| or its estimate is not finite (a NaN
+        // estimate would otherwise drop out of IsUnstable's comparison and read as stable).
+        const bool ok =
+            r.ok && std::isfinite(r.max_abs_multiplier) && std::isfinite(r.error_estimate);
         chart.max_abs_multiplier[i] = r.max_abs_multiplier;
         chart.error_estimate[i] = r.error_estimate;
         chart.mesh_frequency_hz[i] = r.mesh_frequency_hz;
@@ -168,12 +171,13 @@ StabilityChartResult ComputeStabilityChart(const ChartAxis& x, const ChartAxis& 
   for (long i = 0; i < n; ++i) failed += chart.ok[i] ? 0 : 1;
   chart.summary.counters["grid_points"] = n;
   chart.summary.counters["evaluations"] = n;
-  chart.summary.counters["failed_points"] = failed;
+  chart.summary.counters["undetermined_points"] = failed;
   chart.summary.counters["threads"] = threads;
   if (failed > 0) {
     chart.summary.status = Status::kNumericalIssue;
     chart.summary.message = std::to_string(failed) + " of " + std::to_string(n) +
-                            " grid points failed (left out of the regions and curves)";
+                            " grid points are undetermined (evaluation failed or its verdict is "
+                            "undetermined; left out of the regions and curves)";
   }
 
   // Step 2: transition curves; step 3: regions and labels.

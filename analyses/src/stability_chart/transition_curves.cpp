@@ -48,7 +48,9 @@ Crossing Bisect(const EdgeJob& job, const ChartEvaluator& evaluate, const Stabil
                                      : ChartPoint{c.x_axis.Value(job.ix), mid, job.ix, -1};
     const ChartPointResult r = evaluate(p);
     ++out.evaluations;
-    if (!r.ok || !std::isfinite(r.max_abs_multiplier)) break;  // keep the bracket so far
+    if (!r.ok || !std::isfinite(r.max_abs_multiplier) || !std::isfinite(r.error_estimate)) {
+      break;  // an undetermined point: keep the bracket so far (its half-width is the error)
+    }
     (IsUnstable(r, options.instability_threshold) ? b : a) = mid;
   }
   const double at = 0.5 * (a + b);

@@ -98,7 +98,7 @@ TEST(ArpackMonodromyTest, DominantMultipliersOfA201DofSystemEqualTheClosedForm) 
   // The unstable Meissner multiplier dominates: the verdict is "unstable".
   EXPECT_NEAR(r.max_abs_multiplier, top[0], 1e-10);
   EXPECT_GT(r.max_abs_multiplier, 1.3);
-  EXPECT_FALSE(r.stable);
+  EXPECT_FALSE(r.stable());
 }
 
 TEST(ArpackMonodromyTest, DominantMultipliersOfGearedShaftsEqualTheDenseExactPath) {

@@ -101,7 +101,7 @@ TEST(MathieuTest, MagnusAndHillMultipliersAgreeInsideATongue) {
   const FloquetResult hill = ComputeFloquet(s, o);
   o.method = FloquetMethod::kOdeStepper;
   const FloquetResult ode = ComputeFloquet(s, o);
-  EXPECT_FALSE(magnus.stable);
+  EXPECT_FALSE(magnus.stable());
   EXPECT_LE(MultiplierDistance(magnus.multipliers, ode.multipliers), 1e-10);
   EXPECT_LE(MultiplierDistance(hill.multipliers, ode.multipliers), 1e-10);
   // Liouville: λ1 λ2 = exp(−c T).

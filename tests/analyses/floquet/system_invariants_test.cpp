@@ -94,7 +94,7 @@ TEST(FloquetSystemTest, UndampedPairHasReciprocalMultipliersAndUnitDeterminant) 
     // One free rotation: the double multiplier 1 exactly, and a stable verdict.
     EXPECT_EQ(r.summary.counters.at("num_rigid_modes"), 1);
     EXPECT_EQ((r.multipliers.array() == std::complex<double>(1.0)).count(), 2);
-    EXPECT_TRUE(r.stable);
+    EXPECT_TRUE(r.stable());
     EXPECT_LE(r.max_abs_multiplier, 1.0 + r.summary.error_estimate);
   }
 }
@@ -144,7 +144,7 @@ TEST(FloquetSystemTest, FreePairWithTenRigidModesIsStable) {
   ASSERT_TRUE(r.summary.ok()) << r.summary.message;
   // 12 DOFs, G of rank 2 (δ_η, δ_ζ): 10 rigid-body modes.
   EXPECT_EQ(r.summary.counters.at("num_rigid_modes"), 10);
-  EXPECT_TRUE(r.stable);
+  EXPECT_TRUE(r.stable());
   EXPECT_EQ((r.multipliers.array() == std::complex<double>(1.0)).count(), 20);
 }
 

@@ -250,7 +250,7 @@ TEST(StabilityChart, FailedPointsAreReportedAndLeftOut) {
       failed += expect_ok ? 0 : 1;
     }
   }
-  EXPECT_EQ(chart.summary.counters.at("failed_points"), failed);
+  EXPECT_EQ(chart.summary.counters.at("undetermined_points"), failed);
   for (const TransitionCurve& c : chart.curves) {
     for (double x : c.x) EXPECT_GT(x, 1.2);
   }

@@ -3,8 +3,9 @@
 /// "Floquet", issue 5).
 ///
 /// **Problem.** M q̈ + C(θ) q̇ + K(θ) q = 0 with θ = ω_m t (ω_m = 2π·mesh_frequency_hz), period
-/// T = 2π·P/ω_m [s] (P = SystemModel::period_meshes(): 1, or the hunting period when
-/// tooth-to-tooth errors are present). State x = [q; q̇] (2n), ẋ = A(t) x; the monodromy Φ(T)
+/// T = 2π·P_K/ω_m [s] (P_K: the period of K(θ) and C(θ) in mesh cycles, usually 1; the hunting
+/// period that tooth errors give ε is not used: ε forces the system, it does not excite it
+/// parametrically). State x = [q; q̇] (2n), ẋ = A(t) x; the monodromy Φ(T)
 /// maps x(0) to x(T); its eigenvalues are the Floquet multipliers λ, the characteristic
 /// exponents are μ = ln(λ)/T [1/s] (principal branch). Unstable when max|λ| > 1.
 ///
@@ -22,12 +23,14 @@
 // clang-format on
 ///
 /// **kAuto** (internal::SelectFloquetMethod, per DOF block): n ≥ modal_projection_min_dofs →
-/// kModalProjection; piecewise-constant → kExactSteps; otherwise kMagnus. kArpackMonodromy is never
-/// chosen automatically: it returns only the arpack_nev largest-|λ| multipliers. Measured on the
-/// 204-DOF geared shafts (docs/benchmarks.md "Floquet"): at the accuracy a modal projection reaches
-/// (1e-4 … 1e-5) the projection is 13–23× faster; ARPACK gives the 6 dominant multipliers to 2e-10
-/// in 0.28 s, 2.5× faster than the full exact product (both spend most of it in the dense step
-/// exponentials). Ask for it when the dominant multipliers are wanted more accurately than a
+/// kModalProjection (basis: the modes below 2.25 f_m and those with ≥ 5 % mesh strain energy
+/// first, see docs/design.md "Floquet verdicts and step counts"); piecewise-constant →
+/// kExactSteps; otherwise kMagnus (first step count ⌈T·max‖A‖₁⌉, h‖A‖ ≤ 1). kArpackMonodromy is
+/// never chosen automatically: it returns only the arpack_nev largest-|λ| multipliers. Measured on
+/// the 204-DOF geared shafts (docs/benchmarks.md "Floquet"): at the accuracy a modal projection
+/// reaches (1e-4 … 1e-5) the projection is 13–23× faster; ARPACK gives the 6 dominant multipliers
+/// to 2e-10 in 0.28 s, 2.5× faster than the full exact product (both spend most of it in the dense
+/// step exponentials). Ask for it when the dominant multipliers are wanted more accurately than a
 /// projection gives them, or may come from high modes outside any modal basis.
 /// Not for undamped systems: every multiplier then has |λ| = 1, "largest |λ|" selects nothing and
 /// the Arnoldi iteration converges slowly (examples/scenes/helical-pair.toml: 16 s against 0.2 s
@@ -58,6 +61,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "geardyn/common/eigen_types.hpp"
 #include "geardyn/common/summary.hpp"
@@ -97,9 +101,12 @@ struct FloquetOptions {
   /// residual is 0.1·tolerance (the multiplier error is κ times larger, see error_estimate) and
   /// the Magnus step doubling meets it on the dominant multipliers.
   double tolerance = 1e-10;
-  /// kHill: number of harmonics H (0 = chosen from the tolerance).
+  /// kHill: number of harmonics H (0 = chosen from the tolerance); the Hill matrix dim·(2H+1)
+  /// must not exceed 1600 (checked against the state dimension by ComputeFloquet, whose message
+  /// gives the size, memory and flops), so H ≤ 399 in any case.
   int hill_harmonics = 0;
-  /// kModalProjection: number of LTI modes kept (0 = chosen from the tolerance).
+  /// kModalProjection: number of LTI modes kept, the lowest ones (0 = automatic: the modes that
+  /// can resonate with f_m and the mesh modes first, widened until the tolerance is met).
   int num_modes = 0;
   /// Keep the 2n×2n monodromy in the result (not formed by every method).
   bool keep_monodromy = false;
@@ -128,21 +135,56 @@ struct FloquetOptions {
   bool IsValid(std::string* why) const;
 };
 
+/// @brief The stability verdict of a Floquet analysis (three-valued: a computation can fail).
+///
+/// Rules (FinishResult in analyses/src/floquet/multipliers.cpp; docs/design.md "Floquet verdicts"),
+/// with e = summary.error_estimate and the flexible multipliers (rigid-body ones, exactly 1,
+/// excluded):
+/// * kUndetermined when e or any multiplier is NaN, e is infinite, a multiplier is infinite while
+///   its exponent is not finite (a failed monodromy, not an overflowing growth), or the status is
+///   neither kSuccess nor kToleranceNotMet; also kToleranceNotMet unless the point is unstable
+///   beyond its estimate.
+/// * kUnstable when max|λ| − e > 1 (an overflowing |λ| = inf with a finite exponent Re μ > 0
+///   counts), with status kSuccess or kToleranceNotMet: the growth exceeds the estimated error.
+/// * kStable only when the status is kSuccess, every multiplier is finite and max|λ| ≤ 1 + e.
+///   FloquetResult::marginal then says whether the stability is only neutral.
+enum class FloquetVerdict { kStable, kUnstable, kUndetermined };
+/// "stable", "unstable", "undetermined".
+const char* ToString(FloquetVerdict verdict);
+
+/// @brief A mode of the mean LTI system with no damping (for a marginal verdict).
+struct UndampedMode {
+  int index = 0;               ///< mode number as `geardyn modes` prints it (from 0) [-]
+  double frequency_hz = 0.0;   ///< natural frequency of the mean system [Hz]
+  double damping_ratio = 0.0;  ///< ζ = φᵀC̄φ/(2ω) [-] (below 1e-9)
+  std::string dominant_dof;    ///< the DOF with the largest kinetic energy φ_i² M_ii
+};
+
 /// @brief Multipliers and verdict of one Floquet analysis.
 struct FloquetResult {
   Summary summary;  ///< status, message, error_estimate (on the multipliers), counters, time
   FloquetMethod method_used = FloquetMethod::kAuto;
-  std::int64_t period_meshes = 1;  ///< P [-]
-  double period_s = 0.0;           ///< T = 2πP/ω_m [s]
+  /// P_K [-]: the period of K(θ) and C(θ) in mesh cycles (internal::OperatorPeriodMeshes), not
+  /// the hunting period of the transmission error (which forces, but does not excite).
+  std::int64_t period_meshes = 1;
+  double period_s = 0.0;  ///< T = P_K / f_m [s]
   VectorXc multipliers;  ///< (2n, or fewer for kHill/kModalProjection/kArpackMonodromy) λ, by |λ|
                          ///< descending
   VectorXc exponents;    ///< μ = ln(λ)/T [1/s], same order
-  double max_abs_multiplier = 0.0;  ///< max|λ| [-]
+  double max_abs_multiplier = 0.0;  ///< max|λ| [-] (NaN when a multiplier is NaN)
   /// 1 − max|λ| [-]: positive when stable; for an undamped system (|λ| = 1 in stable regions)
   /// compare with error_estimate.
   double stability_margin = 0.0;
-  bool stable = true;  ///< max|λ| ≤ 1 + error_estimate
-  MatrixX monodromy;   ///< (2n×2n) Φ(T) when options.keep_monodromy and the method forms it
+  /// Three-valued verdict (see FloquetVerdict for the rules).
+  FloquetVerdict verdict = FloquetVerdict::kUndetermined;
+  /// kStable with a flexible multiplier on the unit circle within the error estimate
+  /// (1 − max|λ_flex| ≤ max(e, 1e-12)): stable but not asymptotically (undamped modes).
+  bool marginal = false;
+  /// When marginal (model entry only): the modes of the mean system with ζ < 1e-9.
+  std::vector<UndampedMode> undamped_modes;
+  MatrixX monodromy;  ///< (2n×2n) Φ(T) when options.keep_monodromy and the method forms it
+  /// True when verdict is kStable.
+  bool stable() const { return verdict == FloquetVerdict::kStable; }
 };
 
 /// @brief Floquet multipliers of the model at the given mesh frequency (see the @file).

@@ -36,9 +36,10 @@
 ///    listing them only adds wrong candidates near every region.
 ///
 /// Never prints: progress goes to the optional callback (called only from the calling thread).
-/// An evaluator that reports failure marks its point as failed (not in any region, no curve
-/// through it) and the summary says how many; an exception thrown by an evaluator is rethrown
-/// after the parallel loop (the one of the lowest point index).
+/// An evaluator that reports failure (or an undetermined verdict, or a non-finite max|λ| or
+/// estimate) marks its point as undetermined (not in any region, no curve through it) and the
+/// summary says how many (counter "undetermined_points", status kNumericalIssue); an exception
+/// thrown by an evaluator is rethrown after the parallel loop (the one of the lowest point index).
 #pragma once
 
 #include <cstdint>
@@ -76,7 +77,9 @@ struct ChartPointResult {
   double max_abs_multiplier = 0.0;  ///< max|λ| [-]
   double error_estimate = 0.0;      ///< error estimate of max|λ| [-] (≥ 0)
   double mesh_frequency_hz = 0.0;   ///< f_m at this point [Hz] (for the labels; 0 = unknown)
-  bool ok = true;                   ///< false: numerical failure, the point is left out
+  /// false: undetermined (a failed evaluation or an undetermined Floquet verdict); the point
+  /// is left out of the regions and curves and counted in "undetermined_points".
+  bool ok = true;
 };
 
 /// Evaluates one point. One instance is used by one thread at a time.
@@ -159,7 +162,7 @@ struct TransitionCurve {
 
 /// @brief The chart. Point arrays are row-major: index = iy·n_x + ix.
 struct StabilityChartResult {
-  Summary summary;  ///< counters "evaluations", "grid_points", "failed_points", "regions",
+  Summary summary;  ///< counters "evaluations", "grid_points", "undetermined_points", "regions",
                     ///< "curve_points", "threads"; error_estimate = largest crossing error as a
                     ///< fraction of its axis span
   ChartAxis x_axis;
@@ -167,9 +170,11 @@ struct StabilityChartResult {
   std::vector<double> max_abs_multiplier;  ///< max|λ| per point
   std::vector<double> error_estimate;      ///< per point
   std::vector<double> mesh_frequency_hz;   ///< per point [Hz]
-  std::vector<std::uint8_t> ok;            ///< 1 when the evaluation succeeded
-  std::vector<std::uint8_t> stable;        ///< 1 stable, 0 unstable or failed
-  std::vector<int> region;                 ///< index into regions, −1 if not unstable
+  /// 1 when the point has a verdict; 0 undetermined (the evaluator's ok is false, or max|λ| or
+  /// its estimate is not finite): neither stable nor unstable, in no region and no curve.
+  std::vector<std::uint8_t> ok;
+  std::vector<std::uint8_t> stable;  ///< 1 stable, 0 unstable or undetermined (see ok)
+  std::vector<int> region;           ///< index into regions, −1 if not unstable
   std::vector<ChartRegion> regions;
   std::vector<TransitionCurve> curves;
   int index(int ix, int iy) const { return iy * x_axis.num_points + ix; }

@@ -1,0 +1,148 @@
+// Floquet verdicts (issue 12): three-valued, NaN never read as a number, undamped → marginal.
+// Truths: the verdict rules of floquet.hpp (FloquetVerdict) applied to constructed summaries; a
+// NaN injected into the coefficients of a closed-form system (every method must answer
+// "undetermined", never a verdict from a default Φ); the closed-form Meissner multipliers
+// (det Φ = 1 undamped: |λ| = 1 in the stable region → marginal; Liouville det Φ = e^{−cT} damped:
+// |λ| = e^{−cT/2} < 1 on the unit-circle pair → not marginal).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "../../../analyses/src/floquet/floquet_internal.hpp"
+#include "floquet_test_support.hpp"
+
+namespace geardyn::test {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+VectorXc Values(std::initializer_list<std::complex<double>> v) {
+  VectorXc out(static_cast<Eigen::Index>(v.size()));
+  Eigen::Index i = 0;
+  for (const auto& x : v) out[i++] = x;
+  return out;
+}
+
+Summary MakeSummary(Status status, double error) {
+  Summary s;
+  s.status = status;
+  s.error_estimate = error;
+  return s;
+}
+
+FloquetVerdict Decide(Status status, double error, const VectorXc& l, const VectorXc& mu) {
+  return internal::DecideVerdict(MakeSummary(status, error), l, mu, nullptr);
+}
+
+TEST(FloquetVerdictTest, RulesOfTheThreeValuedVerdict) {
+  const VectorXc inside = Values({0.9, 0.5});
+  const VectorXc mu = Values({-0.1, -0.7});
+  const VectorXc outside = Values({1.2, 0.5});
+  const VectorXc mu_out = Values({0.18, -0.7});
+  // Success, finite, inside → stable; outside beyond e → unstable.
+  EXPECT_EQ(Decide(Status::kSuccess, 1e-12, inside, mu), FloquetVerdict::kStable);
+  EXPECT_EQ(Decide(Status::kSuccess, 1e-12, outside, mu_out), FloquetVerdict::kUnstable);
+  // A NaN estimate is undetermined, whatever the multipliers say (std::max would have dropped it).
+  EXPECT_EQ(Decide(Status::kSuccess, kNaN, inside, mu), FloquetVerdict::kUndetermined);
+  EXPECT_EQ(Decide(Status::kSuccess, kNaN, outside, mu_out), FloquetVerdict::kUndetermined);
+  // An infinite estimate: the issue's "max|λ| = inf, stable" case.
+  EXPECT_EQ(Decide(Status::kToleranceNotMet, kInf, Values({kInf, 0.5}), Values({kInf, 0.0})),
+            FloquetVerdict::kUndetermined);
+  EXPECT_EQ(Decide(Status::kSuccess, kInf, inside, mu), FloquetVerdict::kUndetermined);
+  // A NaN multiplier.
+  EXPECT_EQ(Decide(Status::kSuccess, 1e-12, Values({kNaN, 0.5}), Values({kNaN, 0.0})),
+            FloquetVerdict::kUndetermined);
+  // |λ| overflowing double with a finite positive exponent is a growth, not a failure.
+  EXPECT_EQ(Decide(Status::kSuccess, 1e-3, Values({kInf, 0.5}), Values({3.0, -0.7})),
+            FloquetVerdict::kUnstable);
+  // ... but an infinite |λ| whose exponent is not finite is a failure.
+  EXPECT_EQ(Decide(Status::kSuccess, 1e-3, Values({kInf, 0.5}), Values({kInf, -0.7})),
+            FloquetVerdict::kUndetermined);
+  // Tolerance missed: unstable beyond the estimate stays unstable, anything else is unknown.
+  EXPECT_EQ(Decide(Status::kToleranceNotMet, 1e-3, outside, mu_out), FloquetVerdict::kUnstable);
+  EXPECT_EQ(Decide(Status::kToleranceNotMet, 1e-3, inside, mu), FloquetVerdict::kUndetermined);
+  EXPECT_EQ(Decide(Status::kToleranceNotMet, 0.3, outside, mu_out), FloquetVerdict::kUndetermined);
+  // Failed runs are never a verdict.
+  EXPECT_EQ(Decide(Status::kNumericalIssue, 1e-12, outside, mu_out), FloquetVerdict::kUndetermined);
+  EXPECT_EQ(Decide(Status::kNotConverged, 1e-12, inside, mu), FloquetVerdict::kUndetermined);
+  // Within the estimate of 1 with success: stable (an undamped system's |λ| = 1 ± round-off).
+  EXPECT_EQ(Decide(Status::kSuccess, 1e-9, Values({1.0 + 1e-10, 0.5}), mu),
+            FloquetVerdict::kStable);
+}
+
+TEST(FloquetVerdictTest, NanPropagatesThroughMaxima) {
+  EXPECT_TRUE(std::isnan(internal::MaxPropagatingNaN(1.0, kNaN)));
+  EXPECT_TRUE(std::isnan(internal::MaxPropagatingNaN(kNaN, 1.0)));
+  EXPECT_EQ(internal::MaxPropagatingNaN(1.0, 2.0), 2.0);
+  EXPECT_TRUE(std::isnan(internal::MaxAbsOf(Values({2.0, kNaN, 0.5}))));
+  EXPECT_EQ(internal::MaxAbsOf(Values({{0.0, 2.0}, 0.5})), 2.0);
+}
+
+TEST(FloquetVerdictTest, BlocksCombine) {
+  using V = FloquetVerdict;
+  EXPECT_EQ(internal::CombineVerdicts(V::kStable, V::kStable), V::kStable);
+  EXPECT_EQ(internal::CombineVerdicts(V::kStable, V::kUndetermined), V::kUndetermined);
+  EXPECT_EQ(internal::CombineVerdicts(V::kUndetermined, V::kUnstable), V::kUnstable);
+  EXPECT_EQ(internal::CombineVerdicts(V::kUnstable, V::kStable), V::kUnstable);
+}
+
+// x'' + k(t) x = 0 with k = 1.3 (+ a NaN on part of the period): every method must report
+// undetermined and a status other than success.
+TEST(FloquetVerdictTest, NanInjectedIntoTheCoefficientsIsUndetermined) {
+  const double T = 3.0;
+  PeriodicSecondOrderSystem smooth;
+  smooth.mass = MatrixX::Identity(1, 1);
+  smooth.period_s = T;
+  smooth.coefficients = [T](double t, MatrixX* K, MatrixX* C) {
+    *K = MatrixX::Constant(1, 1,
+                           t > 0.6 * T ? kNaN : 1.3 + 0.2 * std::cos(2 * std::numbers::pi * t / T));
+    *C = MatrixX::Zero(1, 1);
+  };
+  for (const FloquetMethod m :
+       {FloquetMethod::kMagnus, FloquetMethod::kOdeStepper, FloquetMethod::kArpackMonodromy}) {
+    FloquetOptions o;
+    o.method = m;
+    o.arpack_nev = 1;
+    const FloquetResult r = ComputeFloquet(smooth, o);
+    EXPECT_EQ(r.verdict, FloquetVerdict::kUndetermined) << ToString(m);
+    EXPECT_FALSE(r.summary.ok()) << ToString(m);
+    EXPECT_FALSE(r.stable()) << ToString(m);
+  }
+  PeriodicSecondOrderSystem steps = MakeMeissnerSystem(1.3, 0.7, 0.5, T);
+  steps.steps[1].stiffness(0, 0) = kNaN;
+  const FloquetResult r = ComputeFloquet(steps, {});
+  EXPECT_EQ(r.method_used, FloquetMethod::kExactSteps);
+  EXPECT_EQ(r.verdict, FloquetVerdict::kUndetermined);
+  EXPECT_FALSE(r.summary.ok());
+  PeriodicSecondOrderSystem hill;
+  hill.mass = MatrixX::Identity(1, 1);
+  hill.period_s = T;
+  hill.stiffness_harmonics = {MatrixXc::Constant(1, 1, 1.3), MatrixXc::Constant(1, 1, kNaN)};
+  FloquetOptions o;
+  o.method = FloquetMethod::kHill;
+  const FloquetResult h = ComputeFloquet(hill, o);
+  EXPECT_EQ(h.verdict, FloquetVerdict::kUndetermined);
+  EXPECT_FALSE(h.summary.ok());
+}
+
+TEST(FloquetVerdictTest, UndampedStableIsMarginalDampedIsNot) {
+  // Meissner k = 1.3 / 0.7, duty 0.5, T = 3: |tr Φ| < 2 (closed form) → stable.
+  const double T = 3.0;
+  const double tr = MeissnerTrace(1.3, 0.7, 0.5 * T, 0.5 * T);
+  ASSERT_LT(std::abs(tr), 2.0);
+  const FloquetResult undamped = ComputeFloquet(MakeMeissnerSystem(1.3, 0.7, 0.5, T), {});
+  EXPECT_EQ(undamped.verdict, FloquetVerdict::kStable);
+  EXPECT_TRUE(undamped.marginal);
+  // c = 0.05: det Φ = e^{−cT} (Liouville), a complex pair has |λ| = e^{−cT/2}.
+  const double c = 0.05;
+  const FloquetResult damped = ComputeFloquet(MakeMeissnerSystem(1.3, 0.7, 0.5, T, c), {});
+  EXPECT_EQ(damped.verdict, FloquetVerdict::kStable);
+  EXPECT_FALSE(damped.marginal);
+  EXPECT_NEAR(damped.max_abs_multiplier, std::exp(-0.5 * c * T), 1e-12);
+}
+
+}  // namespace
+}  // namespace geardyn::test
