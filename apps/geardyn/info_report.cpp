@@ -8,6 +8,7 @@
 #include "geardyn/common/units.hpp"
 #include "geardyn/models/gear/iso_stiffness.hpp"
 #include "geardyn/models/scene/mesh_model.hpp"
+#include "geardyn/shaft_report.hpp"
 
 namespace geardyn::app {
 namespace {
@@ -142,9 +143,12 @@ nlohmann::json MakeInfoReport(const Scene& scene) {
   }
   report["gears"] = gears;
   report["meshes"] = meshes;
+  report["shafts"] = MakeShaftsReport(scene);
+  report["damping"] = MakeSystemDampingReport(scene);
   report["counts"] = {{"gears", scene.gears.size()},
                       {"meshes", scene.meshes.size()},
                       {"bearings", scene.bearings.size()},
+                      {"shafts", scene.shafts.size()},
                       {"loads", scene.loads.size()}};
   return report;
 }
@@ -209,6 +213,7 @@ std::string FormatInfoText(const nlohmann::json& report) {
         << mesh["hunting_period_meshes"].get<long>() << " mesh cycles\n";
     for (const json& w : mesh["warnings"]) out << "warning: " << w.get<std::string>() << "\n";
   }
+  FormatShaftsText(report, out);
   return out.str();
 }
 

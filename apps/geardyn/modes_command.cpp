@@ -10,6 +10,7 @@
 #include "geardyn/models/system/scene_system.hpp"
 #include "geardyn/modes_report.hpp"
 #include "geardyn/output_files.hpp"
+#include "geardyn/shaft_report.hpp"
 
 namespace geardyn::app {
 namespace {
@@ -30,7 +31,8 @@ int RunModes(const ModesCommandOptions& opts, std::ostream& out) {
   const int n = built.model.num_dofs();
   const ModalOptions options = MakeModesOptions(opts.settings, n);
   const ModalResult result = ComputeModes(built.model, options);
-  const nlohmann::json report = MakeModesReport(scene.source, n, result, built.warnings);
+  nlohmann::json report = MakeModesReport(scene.source, n, result, built.warnings);
+  GroupShaftStrain(scene, &report);
   const std::string json_text = report.dump(2) + "\n";
   out << (opts.scene.json ? json_text : FormatModesText(report));
   const std::string& dir = opts.scene.out_dir;

@@ -135,6 +135,7 @@ class ChartContext {
 std::vector<double> NaturalFrequencies(const SystemModel& model) {
   ModalOptions options;
   options.compute_energy_fractions = false;
+  options.compute_damping_ratios = false;  // frequencies only: no vectors even when C ≠ 0
   const ModalResult modes = ComputeModes(model, options);
   return {modes.frequencies_hz.data(), modes.frequencies_hz.data() + modes.frequencies_hz.size()};
 }

@@ -14,10 +14,6 @@
 namespace geardyn::internal {
 namespace {
 
-// Above this size the commutation test C M⁻¹K̄ = K̄ M⁻¹C (O(n³)) is replaced by the test on the
-// computed modal subspace.
-constexpr int kDenseDampingTestMaxDofs = 2000;
-
 // A zero of the state matrix that belongs to a free rigid-body mode is defective (q = a + b t), so
 // a backward-stable eigensolver finds it only to ≈ √ε·‖A‖: |λ| ≤ kDampedZeroTol·ω_s is zero.
 constexpr double kDampedZeroTol = 1e-6;

@@ -210,10 +210,15 @@ ModalResult ComputeModes(const SystemModel& model, const ModalOptions& options) 
   if (!fallback.empty()) summary.warnings.push_back(fallback);
 
   const internal::MeanSystem sys = internal::AssembleMeanSystem(model, &summary.warnings);
-  // Vectors: for the outputs that need them, and for the modal damping ratios / the damping
-  // classification of large systems when there is damping.
+  // Vectors only for the outputs that use them: shapes, energy fractions, the modal damping
+  // ratios, and with damping the classification of a large system (its test runs on the modes)
+  // and the damped modes above damped_max_dofs (from the modal ratios).
+  const bool damping_needs_vectors =
+      sys.has_damping &&
+      (options.compute_damping_ratios || n > kDenseDampingTestMaxDofs ||
+       (options.compute_damped && n > options.damped_max_dofs));
   const bool need_vectors =
-      options.compute_shapes || options.compute_energy_fractions || sys.has_damping;
+      options.compute_shapes || options.compute_energy_fractions || damping_needs_vectors;
 
   GeneralizedEigenResult eig;
   switch (result.method_used) {

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/system/system_damping.hpp"
 #include "geardyn/system/workspace.hpp"
 #include "system_model_data.hpp"
 
@@ -62,12 +63,6 @@ SparseMatrix FromTriplets(int n, const Triplets& t) {
   a.setFromTriplets(t.begin(), t.end());
   a.makeCompressed();
   return a;
-}
-
-SparseMatrix DenseToSparse(const MatrixX& a) {
-  SparseMatrix s = a.sparseView();
-  s.makeCompressed();
-  return s;
 }
 
 }  // namespace
@@ -182,18 +177,23 @@ void SystemBuilder::SetRayleighDamping(double alpha, double beta) {
                        "rayleigh alpha: must be finite and ≥ 0, got " << alpha);
   GEARDYN_THROW_UNLESS(std::isfinite(beta) && beta >= 0.0,
                        "rayleigh beta: must be finite and ≥ 0, got " << beta);
-  GEARDYN_THROW_UNLESS(!has_modal_, "rayleigh damping: modal damping ratio already set");
-  rayleigh_alpha_ = alpha;
-  rayleigh_beta_ = beta;
-  has_rayleigh_ = true;
+  GEARDYN_THROW_UNLESS(!damping_.has_modal(), "rayleigh damping: modal damping ratio already set");
+  damping_.rayleigh_alpha = alpha;
+  damping_.rayleigh_beta = beta;
 }
 
 void SystemBuilder::SetModalDampingRatio(double zeta) {
   GEARDYN_THROW_UNLESS(std::isfinite(zeta) && zeta >= 0.0 && zeta < 1.0,
                        "modal damping ratio: must be in [0, 1), got " << zeta);
-  GEARDYN_THROW_UNLESS(!has_rayleigh_, "modal damping ratio: Rayleigh damping already set");
-  modal_zeta_ = zeta;
-  has_modal_ = true;
+  GEARDYN_THROW_UNLESS(!damping_.has_rayleigh(),
+                       "modal damping ratio: Rayleigh damping already set");
+  damping_.modal_ratio = zeta;
+}
+
+void SystemBuilder::SetSystemDamping(const SystemDamping& damping) {
+  std::string why;
+  GEARDYN_THROW_UNLESS(damping.IsValid(&why), why);
+  damping_ = damping;
 }
 
 SystemModel SystemBuilder::Build() const {
@@ -329,50 +329,8 @@ SystemModel SystemBuilder::Build() const {
 
   internal::ComputeFacts(*data);  // blocks before Rayleigh/modal damping (which keep them)
 
-  if (has_rayleigh_ || has_modal_) {
-    data->rayleigh_alpha = rayleigh_alpha_;
-    data->rayleigh_beta = rayleigh_beta_;
-    data->modal_zeta = modal_zeta_;
-    const SystemModel undamped(data);  // shares data (copy-on-write below)
-    if (has_rayleigh_) {
-      SystemWorkspace ws(undamped, StorageKind::kSparse);
-      const SparseMatrix& kbar = AssembleMeanStiffnessSparse(undamped, ws);
-      SparseMatrix c = data->damping0 + rayleigh_alpha_ * data->mass + rayleigh_beta_ * kbar;
-      c.prune(0.0);
-      auto next = std::make_shared<SystemModel::Data>(*data);
-      next->damping0 = c;
-      data = next;
-    } else {
-      SystemWorkspace ws(undamped, StorageKind::kSparse);
-      const MatrixX kbar = MatrixX(AssembleMeanStiffnessSparse(undamped, ws));
-      const MatrixX mass = MatrixX(data->mass);
-      MatrixX c_modal = MatrixX::Zero(n, n);
-      for (const std::vector<int>& block : data->blocks) {
-        const int nb = static_cast<int>(block.size());
-        MatrixX kb(nb, nb), mb(nb, nb);
-        for (int a = 0; a < nb; ++a) {
-          for (int b = 0; b < nb; ++b) {
-            kb(a, b) = kbar(block[a], block[b]);
-            mb(a, b) = mass(block[a], block[b]);
-          }
-        }
-        Eigen::GeneralizedSelfAdjointEigenSolver<MatrixX> eig(0.5 * (kb + kb.transpose()), mb);
-        GEARDYN_THROW_UNLESS(eig.info() == Eigen::Success,
-                             "modal damping: eigen-decomposition of the mean system failed");
-        const VectorX omega = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();
-        const MatrixX mphi = mb * eig.eigenvectors();
-        const MatrixX cb = mphi * (2.0 * modal_zeta_ * omega).asDiagonal() * mphi.transpose();
-        for (int a = 0; a < nb; ++a) {
-          for (int b = 0; b < nb; ++b) c_modal(block[a], block[b]) = cb(a, b);
-        }
-      }
-      auto next = std::make_shared<SystemModel::Data>(*data);
-      next->damping0 = data->damping0 + DenseToSparse(0.5 * (c_modal + c_modal.transpose()));
-      data = next;
-    }
-    data->id = internal::NextModelId();
-  }
-  return SystemModel(std::move(data));
+  // Rayleigh/modal damping keeps the blocks (it couples DOFs of one block only).
+  return AddSystemDamping(SystemModel(std::move(data)), damping_);
 }
 
 }  // namespace geardyn

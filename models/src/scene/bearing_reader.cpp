@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "scene/element_names.hpp"
 #include "scene/section_readers.hpp"
+#include "scene/suggestions.hpp"
 #include "scene/toml_fields.hpp"
 
 namespace geardyn::internal {
@@ -126,19 +130,58 @@ Matrix6 ReadMatrix6(const Fields& f, std::string_view key, const std::string& wh
   return m;
 }
 
+namespace {
+
+// The shaft named `name`, if any.
+const ShaftDef* FindShaft(const Scene& scene, const std::string& name) {
+  for (const ShaftDef& s : scene.shafts) {
+    if (s.name == name) return &s;
+  }
+  return nullptr;
+}
+
+// A gear or shaft name under `key` (`station_key` is the station required on a shaft).
+void CheckBody(const Fields& f, std::string_view key, std::string_view station_key,
+               const std::string& name, const Scene& scene, std::optional<double>* station) {
+  const ShaftDef* shaft = FindShaft(scene, name);
+  if (shaft == nullptr) {
+    bool gear = false;
+    for (const GearDef& g : scene.gears) gear = gear || g.name == name;
+    if (!gear && !scene.shafts.empty()) {
+      std::vector<std::string> names;
+      for (const GearDef& g : scene.gears) names.push_back(g.name);
+      for (const ShaftDef& s : scene.shafts) names.push_back(s.name);
+      f.Fail(key, "no gear or shaft named '" + name + "'" + DidYouMean(name, names) +
+                      "; gears and shafts: " + JoinNames(names));
+    }
+    (void)GearByName(f, key, name, scene);
+    if (f.Find(station_key) != nullptr) {
+      f.Fail(station_key, "only a bearing on a [[shaft]] has a station; '" + name + "' is a gear");
+    }
+    return;
+  }
+  *station = ReadStation(f, station_key, *shaft);
+}
+
+}  // namespace
+
 BearingDef ReadBearing(const ErrorContext& ctx, const toml::table& t, std::size_t index,
                        const Scene& scene) {
   BearingDef bd;
-  CheckElementKeys(ctx, t, "bearing", index, {"name", "body", "other", "stiffness", "damping"});
+  CheckElementKeys(ctx, t, "bearing", index,
+                   {"name", "body", "other", "station", "other_station", "stiffness", "damping"});
   bd.name = ReadElementName(ctx, t, "bearing", index);
   const Fields f(ctx, t, "bearing." + bd.name);
-  bd.body = ReadGearName(f, "body", "name of the supported [[gear]]", scene);
+  bd.body = f.ReqString("body", "name of the supported [[gear]] or [[shaft]]");
+  CheckBody(f, "body", "station", bd.body, scene, &bd.station);
   if (auto other = f.OptString("other")) {
     bd.other = *other;
-    (void)GearByName(f, "other", bd.other, scene);
-    if (bd.other == bd.body) {
+    CheckBody(f, "other", "other_station", bd.other, scene, &bd.other_station);
+    if (bd.other == bd.body && bd.station == bd.other_station) {
       f.Fail("other", "must differ from body ('" + bd.body + "'); omit it for a ground bearing");
     }
+  } else if (f.Find("other_station") != nullptr) {
+    f.Fail("other_station", "only a bearing with an `other` shaft has an other_station");
   }
   bd.stiffness = ReadMatrix6(f, "stiffness", "stiffness in N/m, N/rad, N m/rad");
   if (f.Find("damping") != nullptr) {

@@ -9,6 +9,33 @@
 
 namespace geardyn {
 
+double ShaftDef::length() const {
+  double total = 0.0;
+  for (const ShaftSectionDef& s : sections) total += s.length;
+  return total;
+}
+
+int ShaftDef::SectionAt(double a, double b) const {
+  // The section containing the element's midpoint (elements never straddle a section end).
+  const double mid = 0.5 * (a + b);
+  double end = 0.0;
+  for (std::size_t k = 0; k < sections.size(); ++k) {
+    end += sections[k].length;
+    if (mid < end) return static_cast<int>(k);
+  }
+  return static_cast<int>(sections.size()) - 1;
+}
+
+std::optional<std::pair<const ShaftDef*, double>> Scene::FindGearShaft(
+    std::string_view gear_name) const {
+  for (const ShaftDef& shaft : shafts) {
+    for (const ShaftGearDef& g : shaft.gears) {
+      if (g.gear == gear_name) return std::make_pair(&shaft, g.station);
+    }
+  }
+  return std::nullopt;
+}
+
 const GearDef& Scene::gear(std::string_view name) const {
   for (const GearDef& g : gears) {
     if (g.name == name) return g;

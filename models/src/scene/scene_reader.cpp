@@ -96,33 +96,43 @@ TablesByName ReadSection(const ErrorContext& ctx, const toml::table& root, const
 
 // Kinematics: loops of meshes (and torsionally stiff bearings) must close.
 void CheckKinematics(const ErrorContext& ctx, const Scene& scene, const TablesByName& mesh_tables,
-                     const TablesByName& bearing_tables,
+                     const TablesByName& bearing_tables, const TablesByName& shaft_tables,
                      const std::vector<const toml::table*>& planetary_tables) {
   const internal::SpeedRatios ratios = internal::CalcSpeedRatios(scene, scene.operating_point.body);
-  if (!ratios.conflict_mesh && !ratios.conflict_bearing) return;
+  if (!ratios.conflict_mesh && !ratios.conflict_bearing && !ratios.conflict_shaft) return;
   const bool is_mesh = ratios.conflict_mesh.has_value();
-  const std::string name = is_mesh ? scene.meshes[*ratios.conflict_mesh].name
-                                   : scene.bearings[*ratios.conflict_bearing].name;
   const toml::table* t = nullptr;
-  if (const auto planetary = scene.FindPlanetaryMesh(name); is_mesh && planetary) {
-    const auto& sets = scene.planetaries;
-    t = planetary_tables[static_cast<std::size_t>(planetary->first - sets.data())];
+  std::string key, what;
+  if (ratios.conflict_shaft) {
+    const std::string& name = scene.shafts[*ratios.conflict_shaft].name;
+    t = shaft_tables.at(name);
+    key = "shaft." + name;
+    what = "shaft (its gears turn with it)";
   } else {
-    t = is_mesh ? mesh_tables.at(name) : bearing_tables.at(name);
+    const std::string name = is_mesh ? scene.meshes[*ratios.conflict_mesh].name
+                                     : scene.bearings[*ratios.conflict_bearing].name;
+    if (const auto planetary = scene.FindPlanetaryMesh(name); is_mesh && planetary) {
+      const auto& sets = scene.planetaries;
+      t = planetary_tables[static_cast<std::size_t>(planetary->first - sets.data())];
+    } else {
+      t = is_mesh ? mesh_tables.at(name) : bearing_tables.at(name);
+    }
+    key = (is_mesh ? "mesh." : "bearing.") + name;
+    what = is_mesh ? "mesh" : "torsional coupling";
   }
-  ctx.Fail(t, (is_mesh ? "mesh." : "bearing.") + name,
+  ctx.Fail(t, key,
            "kinematically locked loop: through the other elements gear '" + ratios.conflict_gear +
                "' turns at " + internal::FormatNumber(ratios.ratio_known) +
-               " x the reference speed, but this " + (is_mesh ? "mesh" : "torsional coupling") +
-               " requires " + internal::FormatNumber(ratios.ratio_implied) + " x");
+               " x the reference speed, but this " + what + " requires " +
+               internal::FormatNumber(ratios.ratio_implied) + " x");
 }
 
 Scene Validate(const ErrorContext& ctx, const toml::table& root) {
   Scene scene;
   scene.source = ctx.source();
   const internal::Fields top(ctx, root, "");
-  top.CheckKnown(
-      {"title", "planar", "gear", "mesh", "planetary", "bearing", "load", "operating_point"});
+  top.CheckKnown({"title", "planar", "gear", "mesh", "planetary", "bearing", "load",
+                  "operating_point", "damping", "shaft"});
   if (auto title = top.OptString("title")) scene.title = *title;
   if (auto planar = top.OptBool("planar")) scene.planar = *planar;
 
@@ -143,6 +153,10 @@ Scene Validate(const ErrorContext& ctx, const toml::table& root) {
       planetary_tables.push_back(&t);
     }
   }
+  const TablesByName shaft_tables = ReadSection(
+      ctx, root, {"shaft", false, true},
+      [&](const toml::table& t, std::size_t i) { return internal::ReadShaft(ctx, t, i, scene); },
+      &scene.shafts);
   const TablesByName bearing_tables = ReadSection(
       ctx, root, {"bearing", false, false},
       [&](const toml::table& t, std::size_t i) { return internal::ReadBearing(ctx, t, i, scene); },
@@ -153,9 +167,11 @@ Scene Validate(const ErrorContext& ctx, const toml::table& root) {
       &scene.loads);
 
   internal::AddPlanetBearings(ctx, planetary_tables, &scene);
+  internal::PlaceShaftNodes(&scene);
   scene.operating_point = internal::ReadOperatingPoint(ctx, root, scene);
+  scene.damping = internal::ReadSystemDamping(ctx, root);
   internal::CheckPlanetaryOperatingPoint(ctx, planetary_tables, scene);
-  CheckKinematics(ctx, scene, mesh_tables, bearing_tables, planetary_tables);
+  CheckKinematics(ctx, scene, mesh_tables, bearing_tables, shaft_tables, planetary_tables);
   return scene;
 }
 

@@ -37,8 +37,22 @@ void ReadMassProperties(const Fields& f, GearDef* g);
 MeshDef ReadMesh(const ErrorContext& ctx, const toml::table& t, std::size_t index,
                  const Scene& scene);
 
+/// @brief Reads element `index` of [[shaft]] (shaft_reader.cpp): sections, material and the
+/// gears at their stations (ShaftDef::nodes are placed later by PlaceShaftNodes).
+/// @param[in] scene the gears and the shafts before this one (a gear sits on one shaft)
+ShaftDef ReadShaft(const ErrorContext& ctx, const toml::table& t, std::size_t index,
+                   const Scene& scene);
+
+/// @brief An axial position under `key` of `f`'s table, in [0, shaft.length()] [m]
+/// (shaft_reader.cpp).
+double ReadStation(const Fields& f, std::string_view key, const ShaftDef& shaft);
+
+/// @brief Sets ShaftDef::nodes of every shaft from its sections and the stations of its gears
+/// and bearings (shaft_reader.cpp; see ShaftDef).
+void PlaceShaftNodes(Scene* scene);
+
 /// @brief Reads element `index` of [[bearing]] (bearing_reader.cpp).
-/// @param[in] scene its gears are the bodies the bearing may connect
+/// @param[in] scene its gears and shafts are the bodies the bearing may connect
 BearingDef ReadBearing(const ErrorContext& ctx, const toml::table& t, std::size_t index,
                        const Scene& scene);
 
@@ -71,5 +85,9 @@ TorqueLoadDef ReadLoad(const ErrorContext& ctx, const toml::table& t, std::size_
 /// @param[in] scene with its gears and meshes (the default reference is the first mesh's pinion)
 OperatingPointDef ReadOperatingPoint(const ErrorContext& ctx, const toml::table& root,
                                      const Scene& scene);
+
+/// @brief Reads the optional top-level [damping] table of `root` (damping_reader.cpp): modal
+/// ratios or Rayleigh coefficients; an empty SystemDamping when absent.
+SystemDamping ReadSystemDamping(const ErrorContext& ctx, const toml::table& root);
 
 }  // namespace geardyn::internal

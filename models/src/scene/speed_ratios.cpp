@@ -16,6 +16,7 @@ struct Edge {
   double factor;
   std::optional<std::size_t> mesh;
   std::optional<std::size_t> bearing;
+  std::optional<std::size_t> shaft;
 };
 
 // Relative tolerance of the loop check: ratios are products of a few tooth-count quotients.
@@ -34,12 +35,18 @@ SpeedRatios CalcSpeedRatios(const Scene& scene, std::string_view reference) {
     edges.push_back(
         {mesh.pinion, mesh.gear,
          sign * static_cast<double>(pinion.blank.teeth) / static_cast<double>(gear.blank.teeth), i,
-         std::nullopt});
+         std::nullopt, std::nullopt});
   }
   for (std::size_t i = 0; i < scene.bearings.size(); ++i) {
     const BearingDef& bearing = scene.bearings[i];
     if (!bearing.other.empty() && bearing.stiffness(5, 5) > 0.0) {
-      edges.push_back({bearing.body, bearing.other, 1.0, std::nullopt, i});
+      edges.push_back({bearing.body, bearing.other, 1.0, std::nullopt, i, std::nullopt});
+    }
+  }
+  // A gear on a shaft turns with it (the shaft name is a node of the graph).
+  for (std::size_t i = 0; i < scene.shafts.size(); ++i) {
+    for (const ShaftGearDef& g : scene.shafts[i].gears) {
+      edges.push_back({scene.shafts[i].name, g.gear, 1.0, std::nullopt, std::nullopt, i});
     }
   }
 
@@ -108,6 +115,7 @@ SpeedRatios CalcSpeedRatios(const Scene& scene, std::string_view reference) {
         kLoopTol * std::max(std::abs(ib->second), std::abs(implied))) {
       result.conflict_mesh = e.mesh;
       result.conflict_bearing = e.bearing;
+      result.conflict_shaft = e.shaft;
       result.conflict_gear = e.b;
       result.ratio_known = ib->second;
       result.ratio_implied = implied;

@@ -9,12 +9,14 @@
 #include "geardyn/common/check.hpp"
 #include "geardyn/models/elements/bearing.hpp"
 #include "geardyn/models/elements/rigid_body.hpp"
+#include "geardyn/models/elements/shaft_beam.hpp"
 #include "geardyn/models/mesh/mesh_frame.hpp"
 #include "geardyn/models/mesh/mesh_jacobian.hpp"
 #include "geardyn/models/scene/mesh_model.hpp"
 #include "geardyn/models/scene/planetary.hpp"
 #include "geardyn/models/scene/scene_reader.hpp"
 #include "geardyn/system/system_builder.hpp"
+#include "geardyn/system/system_damping.hpp"
 
 namespace geardyn {
 namespace {
@@ -37,6 +39,31 @@ double RequireMassProperty(const Scene& scene, const GearDef& gear, const char* 
   const std::string key = (gear.key.empty() ? "gear." + gear.name : gear.key) + "." + field;
   throw SceneError(scene.source, gear.line, key,
                    "required by " + analysis + " (mass matrix); the scene does not give it");
+// A body of the placement walk: gear g is g, shaft s is num_gears + s.
+struct Endpoint {
+  int node = 0;                      // walk node
+  Vector3 offset = Vector3::Zero();  // station along +z from the node's centre [m]
+  std::optional<double> station;     // on a shaft
+};
+
+Endpoint FindEndpoint(const Scene& scene, const std::string& name,
+                      const std::optional<double>& station) {
+  for (std::size_t s = 0; s < scene.shafts.size(); ++s) {
+    if (scene.shafts[s].name == name) {
+      return {static_cast<int>(scene.gears.size() + s), Vector3(0.0, 0.0, station.value_or(0.0)),
+              station};
+    }
+  }
+  return {GearIndex(scene, name), Vector3::Zero(), std::nullopt};
+}
+
+// Index of the node of `shaft` nearest `station`.
+int NearestNode(const ShaftDef& shaft, double station) {
+  int best = 0;
+  for (int k = 1; k < static_cast<int>(shaft.nodes.size()); ++k) {
+    if (std::abs(shaft.nodes[k] - station) < std::abs(shaft.nodes[best] - station)) best = k;
+  }
+  return best;
 }
 
 }  // namespace
@@ -81,7 +108,9 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
   std::string root_name = scene.operating_point.body;
   if (root_name.empty()) root_name = num_meshes > 0 ? scene.meshes[0].pinion : scene.gears[0].name;
   const int root = GearIndex(scene, root_name);
-  std::vector<std::optional<Vector3>> centre(num_gears);
+  const int num_shafts = static_cast<int>(scene.shafts.size());
+  // Centres of the gears, then of the shafts (station 0), by walk node.
+  std::vector<std::optional<Vector3>> centre(num_gears + num_shafts);
   std::vector<double> gamma(num_meshes, 0.0);
   std::vector<bool> mesh_done(num_meshes, false);
   centre[root] = options.origin;
@@ -118,9 +147,33 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
       }
     }
   };
+  // Gears on a shaft are coaxial with it, at their stations along +z.
+  auto place_shaft = [&](int node) {
+    for (int s = 0; s < num_shafts; ++s) {
+      const ShaftDef& shaft = scene.shafts[s];
+      const int sn = num_gears + s;
+      for (const ShaftGearDef& sg : shaft.gears) {
+        const int gi = GearIndex(scene, sg.gear);
+        const Vector3 z(0.0, 0.0, sg.station);
+        if (node == gi && !centre[sn]) place(sn, *centre[gi] - z);
+        if (node == sn && !centre[gi]) place(gi, *centre[sn] + z);
+      }
+    }
+  };
   while (!queue.empty()) {
     const int g = queue.front();
     queue.pop_front();
+    place_shaft(g);
+    if (g >= num_gears) {
+      for (const BearingDef& b : scene.bearings) {  // couplings from a shaft
+        if (b.other.empty()) continue;
+        const Endpoint a = FindEndpoint(scene, b.body, b.station);
+        const Endpoint o = FindEndpoint(scene, b.other, b.other_station);
+        if (a.node == g && !centre[o.node]) place(o.node, *centre[g] + a.offset - o.offset);
+        if (o.node == g && !centre[a.node]) place(a.node, *centre[g] + o.offset - a.offset);
+      }
+      continue;
+    }
     place_planetary(g);
     for (int k = 0; k < num_meshes; ++k) {
       if (mesh_done[k]) continue;
@@ -133,6 +186,10 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
       if (centre[p] && centre[w]) {  // closed loop: γ from the placed centres
         const Vector3 d = *centre[w] - *centre[p];
         const double dist = std::hypot(d.x(), d.y());
+        GEARDYN_THROW_UNLESS(std::abs(d.z()) <= kLoopTol * a_w,
+                             "mesh '" << m.name << "': its gears are placed " << d.z()
+                                      << " m apart axially by their shafts and the other "
+                                         "meshes (meshing gears share one transverse plane)");
         GEARDYN_THROW_UNLESS(std::abs(dist - a_w) <= kLoopTol * a_w,
                              "mesh '" << m.name << "': its gears are placed " << dist
                                       << " m apart by the other meshes, but its centre distance "
@@ -155,16 +212,22 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
     }
     for (const BearingDef& b : scene.bearings) {
       if (b.other.empty()) continue;
-      const int a = GearIndex(scene, b.body);
-      const int o = GearIndex(scene, b.other);
-      if (a == g && !centre[o]) place(o, *centre[g]);
-      if (o == g && !centre[a]) place(a, *centre[g]);
+      const Endpoint a = FindEndpoint(scene, b.body, b.station);
+      const Endpoint o = FindEndpoint(scene, b.other, b.other_station);
+      if (a.node == g && !centre[o.node]) place(o.node, *centre[g] + a.offset - o.offset);
+      if (o.node == g && !centre[a.node]) place(a.node, *centre[g] + o.offset - a.offset);
     }
   }
-  for (int g = 0; g < num_gears; ++g) {
-    if (!centre[g]) centre[g] = options.origin;  // connected to nothing
-    out.centres.push_back(*centre[g]);
+  for (int node = 0; node < num_gears + num_shafts; ++node) {
+    if (!centre[node]) {  // connected to nothing: at the origin, with the gears of its shaft
+      place(node, options.origin);
+      while (!queue.empty()) {
+        place_shaft(queue.front());
+        queue.pop_front();
+      }
+    }
   }
+  for (int g = 0; g < num_gears; ++g) out.centres.push_back(*centre[g]);
 
   // ---- Bodies.
   SystemBuilder builder;
@@ -197,17 +260,55 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
     }
   }
 
+  // ---- Shafts: a body per node (the gear's body on a gear's node, massless otherwise) and a
+  // Timoshenko element per pair of consecutive nodes.
+  std::vector<std::vector<BodyIndex>> shaft_nodes(num_shafts);
+  for (int s = 0; s < num_shafts; ++s) {
+    const ShaftDef& shaft = scene.shafts[s];
+    const Vector3 origin = *centre[num_gears + s];
+    std::vector<int> gear_at(shaft.nodes.size(), -1);
+    for (const ShaftGearDef& sg : shaft.gears) {
+      gear_at[NearestNode(shaft, sg.station)] = GearIndex(scene, sg.gear);
+    }
+    for (std::size_t k = 0; k < shaft.nodes.size(); ++k) {
+      shaft_nodes[s].push_back(
+          gear_at[k] >= 0 ? body[gear_at[k]]
+                          : builder.AddBody(shaft.name + ".n" + std::to_string(k), Matrix6::Zero(),
+                                            origin + Vector3(0.0, 0.0, shaft.nodes[k])));
+    }
+    for (std::size_t k = 0; k + 1 < shaft.nodes.size(); ++k) {
+      const ShaftSectionDef& section =
+          shaft.sections[shaft.SectionAt(shaft.nodes[k], shaft.nodes[k + 1])];
+      ShaftBeam beam;
+      beam.node_a = origin + Vector3(0.0, 0.0, shaft.nodes[k]);
+      beam.node_b = origin + Vector3(0.0, 0.0, shaft.nodes[k + 1]);
+      beam.section = section.section;
+      beam.material = shaft.material;
+      builder.AddElement(shaft.name + ".e" + std::to_string(k), ElementKind::kShaft,
+                         {shaft_nodes[s][k], shaft_nodes[s][k + 1]},
+                         MatrixX(CalcShaftBeamStiffness(beam)), MatrixX(),
+                         MatrixX(CalcShaftBeamMass(beam)));
+    }
+  }
+  // The system body and its position of a bearing's end.
+  auto resolve = [&](const std::string& name, const std::optional<double>& station) {
+    const Endpoint e = FindEndpoint(scene, name, station);
+    if (e.node < num_gears) return std::make_pair(body[e.node], out.centres[e.node]);
+    const ShaftDef& shaft = scene.shafts[e.node - num_gears];
+    const int k = NearestNode(shaft, *station);
+    return std::make_pair(shaft_nodes[e.node - num_gears][k],
+                          Vector3(*centre[e.node] + Vector3(0.0, 0.0, shaft.nodes[k])));
+  };
+
   // ---- Bearings.
   for (const BearingDef& b : scene.bearings) {
-    const int a = GearIndex(scene, b.body);
+    const auto [ba, ca] = resolve(b.body, b.station);
     if (b.other.empty()) {
-      builder.AddElement(b.name, ElementKind::kBearing, {body[a]}, MatrixX(b.stiffness),
+      builder.AddElement(b.name, ElementKind::kBearing, {ba}, MatrixX(b.stiffness),
                          MatrixX(b.damping));
     } else {
-      const int o = GearIndex(scene, b.other);
-      const Vector3& ca = out.centres[a];
-      const Vector3& co = out.centres[o];
-      builder.AddElement(b.name, ElementKind::kBearing, {body[a], body[o]},
+      const auto [bo, co] = resolve(b.other, b.other_station);
+      builder.AddElement(b.name, ElementKind::kBearing, {ba, bo},
                          MatrixX(CalcBearingMatrix(b.stiffness, ca, ca, co)),
                          MatrixX(CalcBearingMatrix(b.damping, ca, ca, co)));
     }
@@ -256,6 +357,8 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
 
   out.model = builder.Build();
   if (options.planar || scene.planar) out.model = out.model.RestrictToPlanar();
+  // After the restriction: the modes that modal damping refers to are the model's own.
+  out.model = AddSystemDamping(out.model, scene.damping);
   return out;
 }
 

@@ -159,6 +159,10 @@ enum class DampingKind {
 /// Stable name "none", "rayleigh", "classical", "non_proportional".
 const char* ToString(DampingKind kind);
 
+/// Above this size the damping classification tests C on the computed modes instead of the
+/// O(n³) commutation test C M⁻¹K̄ = K̄ M⁻¹C, so it needs the mode vectors.
+inline constexpr int kDenseDampingTestMaxDofs = 2000;
+
 /// @brief Options of ComputeModes.
 struct ModalOptions {
   ModalMethod method = ModalMethod::kAuto;  ///< solver path (kAuto: see the file comment)
@@ -173,6 +177,11 @@ struct ModalOptions {
   bool compute_shapes = false;           ///< return the mode shapes (n × m)
   bool compute_energy_fractions = true;  ///< kinetic/strain fractions and labels
   bool compute_damped = false;           ///< solve the damped state-space problem (dense)
+  /// Modal damping ratios ζ_k = φ_kᵀCφ_k/(2ω_k) when C ≠ 0. They need the mode vectors: with
+  /// false (and neither shapes nor energy fractions) a damped model's modes are computed as
+  /// eigenvalues only, as an undamped one's, unless the damping classification of a large model
+  /// (n > kDenseDampingTestMaxDofs) or its damped modes (n > damped_max_dofs) need them.
+  bool compute_damping_ratios = true;
   /// Largest n for the dense state-space problem (O((2n)³)); above it, proportionally damped
   /// systems get their damped modes from the modal damping ratios of the computed modes (exact)
   /// and non-proportional ones none, with a warning. ≥ 1.
@@ -238,7 +247,7 @@ struct ModalResult {
   double rayleigh_beta = 0.0;   ///< β of C ≈ αM + βK̄ [s] (kRayleigh, kNone)
   /// (m) ζ_k = φ_kᵀCφ_k/(2ω_k) [-], exact when damping_kind ≠ kNonProportional (0 for rigid
   /// modes); empty without damping (C = 0) or without vectors (ARPACK/dense run with neither
-  /// shapes nor energy fractions on an undamped model).
+  /// shapes nor energy fractions on an undamped model, or with compute_damping_ratios = false).
   VectorX modal_damping_ratios;
   /// Damped modes, sorted by natural frequency; empty unless compute_damped.
   std::vector<DampedMode> damped_modes;

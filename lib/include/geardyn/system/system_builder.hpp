@@ -12,7 +12,8 @@
 /// * Rayleigh: C_R = α M + β K̄, with K̄ the MEAN stiffness K0 + Σ Gᵀ K̄2 G (so that the undamped
 ///   mean-system modes stay classical modes);
 /// * modal: C_ζ = M Φ diag(2 ζ ω_r) Φᵀ M with the mass-normalized modes (Φ, ω_r) of (K̄, M)
-///   (dense eigen-decomposition at build time: O(n³), meant for small and medium systems);
+///   (dense eigen-decomposition at build time: O(n³), meant for small and medium systems;
+///   rigid-body modes undamped; AddSystemDamping, system_damping.hpp);
 /// and the mesh damping of each core (B–S Eq. 39), assembled with θ by AssembleDamping.
 #pragma once
 
@@ -23,6 +24,7 @@
 #include "geardyn/common/eigen_types.hpp"
 #include "geardyn/system/dof_map.hpp"
 #include "geardyn/system/mesh_core.hpp"
+#include "geardyn/system/system_damping.hpp"
 #include "geardyn/system/system_model.hpp"
 
 namespace geardyn {
@@ -85,6 +87,10 @@ class SystemBuilder {
   /// @brief Modal damping ratio ζ ∈ [0, 1) on every mode of the mean system (see file comment).
   /// @throws InvalidInput on a value out of range, or if Rayleigh damping was set.
   void SetModalDampingRatio(double zeta);
+  /// @brief Rayleigh or modal system damping, including per-mode ratios (system_damping.hpp);
+  /// replaces what SetRayleighDamping / SetModalDampingRatio set.
+  /// @throws InvalidInput if !damping.IsValid().
+  void SetSystemDamping(const SystemDamping& damping);
 
   /// Number of bodies added so far.
   int num_bodies() const { return static_cast<int>(bodies_.size()); }
@@ -129,11 +135,7 @@ class SystemBuilder {
   std::vector<Element> elements_;
   std::vector<Mesh> meshes_;
   std::vector<Load> loads_;
-  double rayleigh_alpha_ = 0.0;
-  double rayleigh_beta_ = 0.0;
-  double modal_zeta_ = 0.0;
-  bool has_rayleigh_ = false;
-  bool has_modal_ = false;
+  SystemDamping damping_;
 };
 
 }  // namespace geardyn

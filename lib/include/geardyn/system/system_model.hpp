@@ -100,6 +100,8 @@ struct SystemLoad {
   std::array<int, kBodyDofs> dofs{};  ///< system DOF of each component, −1 when held fixed
 };
 
+struct SystemDamping;
+
 /// @brief The assembled system; build it with SystemBuilder (system_builder.hpp).
 class SystemModel {
  public:
@@ -185,6 +187,9 @@ class SystemModel {
   SystemModel RestrictToPlanar() const;
 
  private:
+  // Adds Rayleigh/modal damping to C0 (system_damping.hpp).
+  friend SystemModel AddSystemDamping(const SystemModel& model, const SystemDamping& damping);
+
   std::shared_ptr<const Data> data_;
 };
 

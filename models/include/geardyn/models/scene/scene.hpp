@@ -16,8 +16,10 @@
 
 #include "geardyn/common/eigen_types.hpp"
 #include "geardyn/common/errors.hpp"
+#include "geardyn/models/elements/shaft_section.hpp"
 #include "geardyn/models/gear/gear_geometry.hpp"
 #include "geardyn/models/scene/mesh_model.hpp"
+#include "geardyn/system/system_damping.hpp"
 
 namespace geardyn {
 
@@ -64,10 +66,46 @@ struct MeshDef {
 /// (body − other).
 struct BearingDef {
   std::string name;   ///< unique among the bearings; default "bearing<i>" (0-based i)
-  std::string body;   ///< gear name
-  std::string other;  ///< gear name, empty = ground
+  std::string body;   ///< gear or shaft name
+  std::string other;  ///< gear or shaft name, empty = ground
+  /// Axial position on `body` when it is a shaft [m from the shaft's start], else empty.
+  std::optional<double> station;
+  /// Axial position on `other` when it is a shaft [m from the shaft's start], else empty.
+  std::optional<double> other_station;
   Matrix6 stiffness = Matrix6::Zero();  ///< K [N/m, N·m/rad, N/rad], symmetric PSD
   Matrix6 damping = Matrix6::Zero();    ///< C [N·s/m, N·m·s/rad, N·s/rad], symmetric PSD
+};
+
+/// @brief One uniform section of a [[shaft]]: a hollow or solid circular cylinder.
+struct ShaftSectionDef {
+  double length = 0.0;          ///< [m], > 0
+  CircularSection section;      ///< D_o > 0, 0 ≤ D_i < D_o [m]
+  double element_length = 0.0;  ///< largest element length in this section [m], > 0
+};
+
+/// @brief A gear sitting on a shaft node.
+struct ShaftGearDef {
+  std::string gear;      ///< gear name (on no other shaft)
+  double station = 0.0;  ///< axial position [m from the shaft's start], in [0, length]
+};
+
+/// @brief A flexible shaft of Timoshenko beam elements (shaft_beam.hpp) along the gears' axis
+/// (+z), made of consecutive sections, carrying gears and bearings at stations.
+///
+/// Nodes sit at the section ends, at every station of a gear or bearing, and in between at
+/// equal spacing no longer than the section's element length. The gears on the shaft are rigid
+/// bodies fixed on their node (their mass matrix is added at the node; they turn with it).
+struct ShaftDef {
+  std::string name;                       ///< unique among gears and shafts
+  std::vector<ShaftSectionDef> sections;  ///< from the shaft's start (station 0) on
+  ShaftMaterial material;                 ///< E, G [Pa], ρ [kg/m³]
+  std::vector<ShaftGearDef> gears;        ///< the gears on this shaft
+  std::vector<double> nodes;              ///< node stations, ascending, [0, length] [m]
+
+  /// Total length Σ section lengths [m].
+  double length() const;
+  /// Index of the section that holds the element [a, b] (a < b, two consecutive nodes).
+  int SectionAt(double a, double b) const;
 };
 
 /// @brief A constant external torque on a gear body.
@@ -129,15 +167,22 @@ struct Scene {
   std::vector<GearDef> gears;
   std::vector<MeshDef> meshes;
   std::vector<BearingDef> bearings;
+  std::vector<ShaftDef> shafts;  ///< flexible shafts (see ShaftDef)
   std::vector<TorqueLoadDef> loads;
   std::vector<PlanetaryDef> planetaries;  ///< planetary sets (already expanded, see PlanetaryDef)
   OperatingPointDef operating_point;
   /// Planar model requested (top-level `planar`): keep only x, y, θz of every body.
   bool planar = false;
+  /// System damping of the [damping] table (modal ratios or Rayleigh α, β; none when absent),
+  /// added to C0 by MakeSystemModel after the planar restriction (system_damping.hpp).
+  SystemDamping damping;
 
   /// @brief The planetary set and planet index n whose sun or ring mesh is `mesh_name`, if any.
   std::optional<std::pair<const PlanetaryDef*, int>> FindPlanetaryMesh(
       std::string_view mesh_name) const;
+
+  /// @brief The shaft carrying gear `gear_name` and the gear's station, if any.
+  std::optional<std::pair<const ShaftDef*, double>> FindGearShaft(std::string_view gear_name) const;
 
   /// @brief The gear named `name`.
   /// @throws InvalidInput if the scene has no such gear.

@@ -39,6 +39,17 @@
 /// mesh frequency / first mesh's mesh frequency (Scene::MeshFrequencyHz; 1 when unknown), phase
 /// offset 0 except in planetary sets (above).
 ///
+/// **Shafts** (Scene::shafts): one body per shaft node (ShaftDef::nodes), the node at a gear's
+/// station being that gear's body (gears first in the body order, then the other nodes, massless,
+/// named "<shaft>.n<k>"), and one Timoshenko element "<shaft>.e<k>" (CalcShaftBeamStiffness,
+/// CalcShaftBeamMass; ElementKind::kShaft) per pair of consecutive nodes. A shaft is placed
+/// coaxially with its first gear reached by the walk (z of a gear = z of the shaft + station);
+/// bearings on a shaft act at the node at their station; a bearing between two bodies places the
+/// other one coaxially so that the two stations meet. Meshing gears must share one z.
+///
+/// **System damping** (Scene::damping): AddSystemDamping (system_damping.hpp) on the built model,
+/// after the planar restriction, so that modal ratios refer to that model's own modes.
+///
 /// **Loads.** External moments about +Z (θz): the operating-point torque on its body plus every
 /// [[load]] torque on its body; they all add (the scene gives them as applied torques, e.g. an
 /// input torque on the pinion and the balancing output torque on the wheel).
