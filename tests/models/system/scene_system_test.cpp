@@ -55,7 +55,7 @@ TEST(SceneSystemTest, MissingTransverseInertiaIsHalfThePolarInertia) {
   Scene scene = HelicalPair();
   scene.gears[1].transverse_inertia.reset();
   const SystemModel model = MakeSystemModel(scene);
-  EXPECT_DOUBLE_EQ(model.DenseMass()(9, 9), 0.5 * scene.gears[1].inertia);
+  EXPECT_DOUBLE_EQ(model.DenseMass()(9, 9), 0.5 * *scene.gears[1].inertia);
 }
 
 // spec 01 §6: a rigid re-placement of the whole scene leaves the eigenvalues unchanged.
@@ -118,7 +118,8 @@ TEST(SceneSystemTest, TorsionalLevelMatchesClosedForm) {
   // The torsional core acts on the helical normal: G's θz entries are r_b cos ψ_b.
   const double g1 = std::abs(pair.meshes()[0].G(0, 5));
   const double g2 = std::abs(pair.meshes()[0].G(0, 11));
-  EXPECT_NEAR(values(1), k * (g1 * g1 / scene.gears[0].inertia + g2 * g2 / scene.gears[1].inertia),
+  EXPECT_NEAR(values(1),
+              k * (g1 * g1 / *scene.gears[0].inertia + g2 * g2 / *scene.gears[1].inertia),
               1e-10 * values(1));
   const double cb = std::cos(scene.meshes[0].geometry.base_helix_angle);
   EXPECT_NEAR(g1, rb1 * cb, 1e-12);
