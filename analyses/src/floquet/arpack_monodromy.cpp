@@ -311,13 +311,12 @@ FloquetResult ArpackMonodromyFloquet(const StateSystem& sys, const FloquetOption
     run = RunOperator(prop, false, nev_run, ncv, tol, options.arpack_max_iterations, sys.period_s);
   } else {
     // Step doubling with Richardson on the dominant multipliers (as MagnusMonodromy on Φ).
-    const double p = options.magnus_order;
     // Start where h‖A‖ ≤ 1 (MagnusStartSteps, magnus.cpp), capped so one doubling fits.
     const double norm_T = MaxOperatorNormTimesPeriod(sys, &evaluations);
     const int start = MagnusStartSteps(norm_T);
     if (start > kMaxMagnusSteps) {
       result.summary.status = Status::kToleranceNotMet;
-      result.summary.message = "arpack_monodromy: max‖A‖₁·T = " + std::to_string(norm_T) +
+      result.summary.message = "arpack_monodromy: max‖A‖₁·T = " + FormatEstimate(norm_T) +
                                " needs more than " + std::to_string(kMaxMagnusSteps) +
                                " Magnus steps per period; not attempted";
       result.summary.error_estimate = std::numeric_limits<double>::quiet_NaN();
@@ -330,7 +329,9 @@ FloquetResult ArpackMonodromyFloquet(const StateSystem& sys, const FloquetOption
     prop = MagnusPropagator(sys, options.magnus_order, n1);
     run = RunOperator(prop, false, nev_run, ncv, tol, options.arpack_max_iterations, sys.period_s);
     evaluations += prop.evaluations;
-    int n2 = 2 * n1;
+    int n2 = std::min(kMaxMagnusSteps, 2 * n1);
+    double previous_difference = std::numeric_limits<double>::quiet_NaN();
+    int previous_n = 0;
     while (run.arnoldi.ok) {
       Propagator fine_prop = MagnusPropagator(sys, options.magnus_order, n2);
       applications += run.arnoldi.applications + 2 * run.multipliers.size();
@@ -339,27 +340,33 @@ FloquetResult ArpackMonodromyFloquet(const StateSystem& sys, const FloquetOption
       evaluations += fine_prop.evaluations;
       const int m = std::min<int>(nev, static_cast<int>(fine.multipliers.size()));
       const double ratio = static_cast<double>(n2) / n1;
-      const double err = fine.arnoldi.ok
-                             ? MatchedDistance(fine.multipliers.head(m), run.multipliers) /
-                                   (std::pow(ratio, p) - 1.0)
-                             : std::numeric_limits<double>::infinity();
+      const bool fine_ok = fine.arnoldi.ok;
+      const double difference = fine_ok ? MatchedDistance(fine.multipliers.head(m), run.multipliers)
+                                        : std::numeric_limits<double>::infinity();
+      // The observed order (magnus.cpp ObservedOrder): jumps or kinks lower it below p.
+      const double q =
+          ObservedOrder(previous_difference, difference, previous_n, n1, options.magnus_order);
+      const double err = ratio > 1.0 ? difference / (std::pow(ratio, q) - 1.0)
+                                     : std::numeric_limits<double>::infinity();
       prop = std::move(fine_prop);
       run = std::move(fine);
       // A non-finite estimate (failed or overflowing coarse run) means "refine", not "done".
-      if (err <= options.tolerance || n2 >= kMaxMagnusSteps || !fine.arnoldi.ok) {
+      if (err <= options.tolerance || n2 >= kMaxMagnusSteps || !fine_ok) {
         truncation = std::isnan(err) ? std::numeric_limits<double>::infinity() : err;
         if (!(err <= options.tolerance)) {
           magnus_met = false;
           magnus_message = "arpack_monodromy: Richardson estimate of the dominant multipliers " +
-                           std::to_string(err) + " above the tolerance at " + std::to_string(n2) +
+                           FormatEstimate(err) + " above the tolerance at " + std::to_string(n2) +
                            " Magnus steps";
         }
         break;
       }
       const double grow =
           std::isfinite(err)
-              ? std::clamp(1.2 * std::pow(err / options.tolerance, 1.0 / p), 1.5, 16.0)
+              ? std::clamp(1.2 * std::pow(err / options.tolerance, 1.0 / q), 1.5, 16.0)
               : 4.0;
+      previous_difference = difference;
+      previous_n = n1;
       n1 = n2;
       n2 = static_cast<int>(std::min<double>(kMaxMagnusSteps, std::ceil(n2 * grow)));
     }

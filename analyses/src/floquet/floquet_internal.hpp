@@ -147,6 +147,9 @@ int MagnusStartSteps(double norm_times_period);
 /// MagnusStartSteps and refining past non-finite estimates; not converged (NaN Φ) when the start
 /// count exceeds the cap.
 MonodromyOutcome MagnusMonodromy(const StateSystem& sys, int order, double tolerance);
+/// @brief The observed convergence order [-] from the differences d₀ (runs N₀, N₁) and d₁ (N₁,
+/// N₂), clamped to [1, order]; 1 when d₀ is unknown (first comparison) or not usable.
+double ObservedOrder(double previous_difference, double difference, int n0, int n1, int order);
 /// @brief kOdeStepper: GSL rk8pd on the fundamental matrix, two tolerances.
 MonodromyOutcome OdeMonodromy(const StateSystem& sys, double tolerance);
 
@@ -227,6 +230,10 @@ FloquetResult ModalProjectionFloquet(
     const std::function<MatrixX(int)>& modes, int num_dofs,
     const std::function<PeriodicSecondOrderSystem(const MatrixX&)>& project,
     const FloquetOptions& options, int initial_modes = 0);
+
+/// `value` with 3 significant digits ("1.23e-09", "inf", "nan") for messages (std::to_string
+/// prints 1e-9 as "0.000000").
+std::string FormatEstimate(double value);
 
 /// Seconds since `start` (steady clock).
 double SecondsSince(const std::chrono::steady_clock::time_point& start);

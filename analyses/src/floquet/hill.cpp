@@ -145,7 +145,7 @@ HillOutcome HillExponents(const StateSystem& sys, int harmonics, double toleranc
   }
   if (!(out.truncation_error <= tolerance)) {
     out.converged = false;
-    out.message = "hill: error estimate " + std::to_string(out.truncation_error) +
+    out.message = "hill: error estimate " + FormatEstimate(out.truncation_error) +
                   " above the tolerance at H = " + std::to_string(out.harmonics);
   }
   return out;

@@ -147,7 +147,7 @@ FloquetResult ModalProjectionFloquet(
       if (!(est <= options.tolerance) && out.summary.ok()) {
         out.summary.status = Status::kToleranceNotMet;
         out.summary.message = "modal_projection: estimated multiplier error " +
-                              std::to_string(est) + " with " + std::to_string(m0) + "/" +
+                              FormatEstimate(est) + " with " + std::to_string(m0) + "/" +
                               std::to_string(m1) + "/" + std::to_string(m2) + " modes";
       }
       std::string why;

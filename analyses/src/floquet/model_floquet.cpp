@@ -88,7 +88,8 @@ PeriodicSecondOrderSystem MakeModelSystem(const SystemModel& model, double omega
   }
   if (method == FloquetMethod::kHill) {
     const int dim = 2 * (projected ? static_cast<int>(V.cols()) : model.num_dofs());
-    const int H = hill_harmonics > 0 ? hill_harmonics : std::max(1, static_cast<int>((kMaxHillSize / dim - 1) / 2));
+    const int H = hill_harmonics > 0 ? hill_harmonics
+                                     : std::max(1, static_cast<int>((kMaxHillSize / dim - 1) / 2));
     CheckHillSize(dim, H, hill_harmonics > 0);
     // System harmonic m·q (q = P/P_K) is harmonic m of the operator period; the others are
     // harmonics of ε only (the load), which Hill does not see.

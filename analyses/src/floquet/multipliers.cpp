@@ -3,12 +3,20 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <numeric>
+#include <sstream>
 
 #include "floquet/floquet_internal.hpp"
 
 namespace geardyn::internal {
+
+std::string FormatEstimate(double value) {
+  std::ostringstream os;
+  os << std::setprecision(3) << value;
+  return os.str();
+}
 
 double SecondsSince(const std::chrono::steady_clock::time_point& start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -114,7 +114,7 @@ MonodromyOutcome OdeMonodromy(const StateSystem& sys, double tolerance) {
   if (!(tight.truncation_error <= tolerance)) {
     tight.converged = false;
     tight.message = "ode_stepper: relative error estimate of the monodromy " +
-                    std::to_string(tight.truncation_error) + " above the tolerance";
+                    FormatEstimate(tight.truncation_error) + " above the tolerance";
   }
   return tight;
 }

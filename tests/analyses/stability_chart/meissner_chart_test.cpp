@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 #include <thread>
 
@@ -254,6 +255,43 @@ TEST(StabilityChart, FailedPointsAreReportedAndLeftOut) {
   for (const TransitionCurve& c : chart.curves) {
     for (double x : c.x) EXPECT_GT(x, 1.2);
   }
+}
+
+TEST(StabilityChart, NanEstimateOrMultiplierIsUndeterminedNotStable) {
+  // An evaluator that says ok but returns a NaN estimate (left third) or a NaN max|λ| (right
+  // third): before issue 12 a NaN estimate dropped out of "max|λ| > 1 + max(threshold, e)" and
+  // the point read as stable. Truth: the closed-form Meissner multipliers in the middle third.
+  const auto factory = []() -> ChartEvaluator {
+    return [](const ChartPoint& p) {
+      ChartPointResult r;
+      r.max_abs_multiplier = Meissner{1.0, 0.0}.MaxAbsMultiplier(p.x, p.y);
+      if (p.x < 1.0) r.error_estimate = std::numeric_limits<double>::quiet_NaN();
+      if (p.x > 2.0) r.max_abs_multiplier = std::numeric_limits<double>::quiet_NaN();
+      return r;
+    };
+  };
+  const StabilityChartResult chart =
+      ComputeStabilityChart(FrequencyAxis(21), EpsilonAxis(5), factory, StabilityChartOptions{});
+  EXPECT_EQ(chart.summary.status, Status::kNumericalIssue);
+  long undetermined = 0;
+  for (int iy = 0; iy < 5; ++iy) {
+    for (int ix = 0; ix < 21; ++ix) {
+      const int i = chart.index(ix, iy);
+      const double x = chart.x_axis.Value(ix);
+      const bool expect_ok = x >= 1.0 && x <= 2.0;
+      EXPECT_EQ(chart.ok[i], expect_ok ? 1 : 0) << x;
+      if (!expect_ok) {
+        EXPECT_EQ(chart.stable[i], 0) << x;
+        EXPECT_EQ(chart.region[i], -1) << x;
+        ++undetermined;
+      } else {
+        const bool unstable = Meissner{1.0, 0.0}.MaxAbsMultiplier(x, chart.y_axis.Value(iy)) >
+                              1.0 + StabilityChartOptions{}.instability_threshold;
+        EXPECT_EQ(chart.stable[i], unstable ? 0 : 1) << x;
+      }
+    }
+  }
+  EXPECT_EQ(chart.summary.counters.at("undetermined_points"), undetermined);
 }
 
 TEST(StabilityChart, EvaluatorExceptionsAreRethrown) {
