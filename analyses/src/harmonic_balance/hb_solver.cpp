@@ -307,6 +307,7 @@ HbResult HarmonicBalanceSolver::Impl::SolveFixed(int H, double f_m) {
   }
   result.summary.counters["factorizations"] = factorizations;
   result.summary.counters["harmonics"] = H;
+  result.summary.counters["rigid_body_modes"] = rigid.count();  // rigid_modes.hpp criterion
   result.summary.warnings = warnings;
   if (s.unbalanced > 1e-8) {
     result.summary.warnings.push_back(
