@@ -63,7 +63,7 @@ TEST(HbConvergenceTest, SmoothStiffnessConvergesExponentially) {
 // waveform error falls at order 5/2 in L² and 2 in the maximum.
 TEST(HbConvergenceTest, StepStiffnessWaveformConvergesAtTheOrderOfItsSmoothness) {
   constexpr int kSamples = 2048;
-  constexpr double kOrderTol = 0.3;  // pre-asymptotic H = 8 and the log factors
+  constexpr double kOrderTol = 0.2;  // pre-asymptotic H = 8 (observed 2.41–2.48 and 1.97)
   const SystemModel model = SteppedPair();
   const double f_m = 2600.0;
   const test::OdeSteadyState ode = test::IntegrateSteadyState(model, f_m, 80, kSamples);
