@@ -1,4 +1,5 @@
 #include "geardyn/command.hpp"
+#include "geardyn/output_files.hpp"
 
 namespace geardyn::app {
 
@@ -10,7 +11,10 @@ void AddSceneOptions(CLI::App* cmd, SceneCommandOptions* opts) {
                   "override a scene value, e.g. --set gear.pinion.teeth=23 (repeatable)")
       ->take_all()
       ->allow_extra_args(false);
-  cmd->add_option("--out", opts->out_dir, "directory for result files (created if missing)");
+  // Checked (and created) while parsing, before any computation: a bad --out fails at once.
+  cmd->add_option("--out", opts->out_dir, "directory for result files (created if missing)")
+      ->check(CLI::Validator([](std::string& dir) { return PrepareOutputDirectory(dir); }, "DIR",
+                             "writable directory"));
   cmd->add_flag("--json", opts->json, "print the results as JSON instead of text");
 }
 

@@ -2,6 +2,7 @@
 
 #include "geardyn/cli.hpp"
 #include "geardyn/command.hpp"
+#include "geardyn/common/check.hpp"
 #include "geardyn/mesh_report.hpp"
 #include "geardyn/models/scene/scene_reader.hpp"
 #include "geardyn/output_files.hpp"
@@ -15,6 +16,8 @@ struct MeshCommandOptions {
 };
 
 int RunMesh(const MeshCommandOptions& opts, std::ostream& out) {
+  std::string why;
+  GEARDYN_THROW_UNLESS(opts.sampling.IsValid(&why), why);
   const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
   std::vector<MeshSamples> samples;
   const nlohmann::json report = MakeMeshReport(scene, opts.sampling, &samples);
@@ -52,8 +55,9 @@ Command AddMeshCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "mesh", "write K(θ), h(θ), μ(θ), ε(θ) of every mesh over one period (CSV, JSON, SVG)");
   AddSceneOptions(cmd, &opts->scene);
-  cmd->add_option("--samples", opts->sampling.samples_per_mesh,
-                  "samples per mesh cycle (default: 360, fewer over long hunting periods)");
+  cmd->add_option_function<double>(
+      "--samples", [opts](const double& n) { opts->sampling.samples_per_mesh = n; },
+      "samples per mesh cycle, 1 … 100000 (default: 360, fewer over long hunting periods)");
   return {cmd, [opts](std::ostream& out) { return RunMesh(*opts, out); }};
 }
 

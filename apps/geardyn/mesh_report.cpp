@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <type_traits>
 #include <variant>
@@ -23,10 +24,19 @@ constexpr int kDefaultSamplesPerMesh = 360;
 constexpr int kMinAutoSamplesPerMesh = 16;
 
 int SamplesPerMesh(const MeshSamplingOptions& options, std::int64_t period_meshes) {
-  if (options.samples_per_mesh > 0) return options.samples_per_mesh;
+  if (options.samples_per_mesh) return static_cast<int>(*options.samples_per_mesh);
   const long budget =
       MeshSamplingOptions::kMaxAutoSamples / std::max<std::int64_t>(1, period_meshes);
   return static_cast<int>(std::clamp<long>(budget, kMinAutoSamplesPerMesh, kDefaultSamplesPerMesh));
+}
+
+// What `rows` samples cost: memory and CSV size.
+std::string RowCost(double rows) {
+  std::ostringstream out;
+  out << std::setprecision(3) << static_cast<double>(rows) * MeshSamplingOptions::kBytesPerRow / 1e9
+      << " GB in memory, " << static_cast<double>(rows) * MeshSamplingOptions::kCsvBytesPerRow / 1e9
+      << " GB of CSV";
+  return out.str();
 }
 
 void AppendParameters(const MeshParameters& p, MeshSamples* s) {
@@ -106,10 +116,28 @@ json StiffnessHarmonics(const MeshCore& core) {
 
 }  // namespace
 
+bool MeshSamplingOptions::IsValid(std::string* why) const {
+  if (!samples_per_mesh) return true;
+  const double n = *samples_per_mesh;
+  std::ostringstream out;
+  if (!std::isfinite(n) || n != std::floor(n)) {
+    out << "--samples: must be an integer, got " << n;
+  } else if (n < 1) {
+    out << "--samples: must be ≥ 1 (omit it for the automatic count), got " << n;
+  } else if (n > kMaxSamplesPerMesh) {
+    out << "--samples: must be ≤ " << kMaxSamplesPerMesh << " per mesh cycle, got " << n << " ("
+        << RowCost(n) << " per mesh cycle)";
+  } else {
+    return true;
+  }
+  if (why != nullptr) *why = out.str();
+  return false;
+}
+
 json MakeMeshReport(const Scene& scene, const MeshSamplingOptions& options,
                     std::vector<MeshSamples>* samples) {
-  GEARDYN_THROW_UNLESS(options.samples_per_mesh >= 0,
-                       "--samples: must be positive, got " << options.samples_per_mesh);
+  std::string why;
+  GEARDYN_THROW_UNLESS(options.IsValid(&why), why);
   json meshes = json::array();
   samples->clear();
   for (const MeshDef& mesh : scene.meshes) {
@@ -117,6 +145,12 @@ json MakeMeshReport(const Scene& scene, const MeshSamplingOptions& options,
     const std::int64_t period = PeriodMeshes(built.core);
     const int per_mesh = SamplesPerMesh(options, period);
     const std::int64_t count = period * per_mesh;
+    GEARDYN_THROW_UNLESS(
+        count <= MeshSamplingOptions::kMaxSamples,
+        "--samples: " << per_mesh << " samples per mesh cycle × " << period << " mesh cycles (mesh."
+                      << mesh.name << "'s period) = " << count << " rows exceed the limit "
+                      << MeshSamplingOptions::kMaxSamples << " ("
+                      << RowCost(static_cast<double>(count)) << "); use fewer samples");
     MeshSamples s;
     s.mesh_name = mesh.name;
     std::vector<double> thetas(static_cast<size_t>(count));

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,10 +15,23 @@ namespace geardyn::app {
 
 /// Sampling of the mesh parameters.
 struct MeshSamplingOptions {
-  /// Samples per mesh cycle; 0 = automatic: 360 for a one-cycle period, fewer (≥ 16) for a
-  /// hunting period so that a mesh has at most kMaxAutoSamples rows.
-  int samples_per_mesh = 0;
+  /// Samples per mesh cycle, an integer in [1, kMaxSamplesPerMesh] (a double, so that "2e5" on
+  /// the command line is read as written and checked here); empty = automatic: 360 for a
+  /// one-cycle period, fewer (≥ 16) for a hunting period so that a mesh has at most
+  /// kMaxAutoSamples rows.
+  std::optional<double> samples_per_mesh;
   static constexpr long kMaxAutoSamples = 200000;
+  /// 10⁵ samples per cycle resolve a mesh cycle to 10⁻⁵ (the stiffness steps of the contact
+  /// lines are located exactly by the cores; the samples only draw them).
+  static constexpr long kMaxSamplesPerMesh = 100000;
+  /// Rows of one mesh (period × samples per cycle): 2·10⁶ rows are ≈ 0.1 GB in memory and
+  /// ≈ 0.3 GB of CSV.
+  static constexpr long kMaxSamples = 2000000;
+  /// Bytes per row: the 8 columns in memory, and about 15 characters per CSV field.
+  static constexpr double kBytesPerRow = 8 * 8.0;
+  static constexpr double kCsvBytesPerRow = 8 * 15.0;
+  /// @brief False (naming `--samples`, the value, the bound and the cost) when out of range.
+  bool IsValid(std::string* why) const;
 };
 
 /// The sampled parameters of one mesh (columns of its CSV).

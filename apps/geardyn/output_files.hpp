@@ -7,6 +7,14 @@
 
 namespace geardyn::app {
 
+/// @brief Makes sure `dir` can receive result files before any computation runs: creates it if
+/// missing, and checks that it is a directory and that a file can be created in it (a probe file,
+/// removed again).
+/// @param[in] dir the `--out` directory.
+/// @return "" when the directory is usable, else the reason (naming the path), for the `--out`
+/// validator of every scene command (commands.cpp), so that a bad `--out` fails in milliseconds.
+std::string PrepareOutputDirectory(const std::filesystem::path& dir);
+
 /// @brief Writes `text` to DIR/name, creating DIR if needed.
 /// @throws InvalidInput naming the path and the reason when the directory or file cannot be
 /// written.

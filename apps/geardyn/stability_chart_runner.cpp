@@ -186,6 +186,15 @@ SceneChart ComputeSceneStabilityChart(const SceneChartSettings& settings) {
   if (x.path == y.path) {
     throw InvalidInput("--x and --y name the same scene path '" + x.path + "'");
   }
+  {
+    // Sizes first: a huge grid is refused before any model is built.
+    const ChartAxis ax{x.path, x.lo, x.hi, x.num_points};
+    const ChartAxis ay{y.path, y.lo, y.hi, y.num_points};
+    std::string why;
+    if (!ax.IsValid("--x", &why) || !ay.IsValid("--y", &why) || !IsValidChartGrid(ax, ay, &why)) {
+      throw InvalidInput(why);
+    }
+  }
   ChartContext context(settings);
 
   // Both ends of both axes must give a valid scene; name the axis whose value is rejected.
@@ -244,6 +253,7 @@ SceneChart ComputeSceneStabilityChart(const SceneChartSettings& settings) {
         return [&shared](const ChartPoint& p) { return shared.Evaluate(p); };
       },
       options);
+  for (const std::string& w : out.chart.summary.warnings) out.warnings.push_back(w);
   out.model_builds = context.builds();
   return out;
 }

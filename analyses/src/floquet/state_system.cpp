@@ -9,6 +9,7 @@
 
 #include "floquet/floquet_internal.hpp"
 #include "geardyn/common/check.hpp"
+#include "geardyn/numerics/rigid_modes.hpp"
 
 namespace geardyn::internal {
 namespace {
@@ -149,8 +150,17 @@ StateSystem MakeStateSystem(const PeriodicSecondOrderSystem& system, bool deflat
     const Eigen::SelfAdjointEigenSolver<MatrixX> eig(G);
     const VectorX& ev = eig.eigenvalues();
     const double zero = kRigidZeroTol * std::max(s0, omega0 * Ct.diagonal().cwiseAbs().maxCoeff());
+    // Rigid: the one criterion of rigid_modes.hpp on q = L⁻ᵀu, for K̄ and for C̄.
+    const VectorX k_scale = RigidScaling(K_mean.diagonal()),
+                  c_scale = RigidScaling(C_mean.diagonal());
+    auto rigid_at = [&](int k) {
+      const VectorX q =
+          L.transpose().triangularView<Eigen::Upper>().solve(eig.eigenvectors().col(k));
+      return IsRigidBodyPattern(q.dot(K_mean * q), k_scale, q) &&
+             IsRigidBodyPattern(q.dot(C_mean * q), c_scale, q);
+    };
     int r = 0;
-    while (r < n && std::abs(ev[r]) <= zero) ++r;
+    while (r < n && rigid_at(r)) ++r;
     const bool psd = ev[0] >= -zero;
     if (psd && r > 0 && r < n) {
       // Verify at every sample: K_j R = 0 and C_j R = 0 (q = L⁻ᵀ u).

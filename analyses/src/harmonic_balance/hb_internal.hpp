@@ -12,6 +12,7 @@
 
 #include "geardyn/analyses/harmonic_balance.hpp"
 #include "geardyn/common/eigen_types.hpp"
+#include "geardyn/numerics/rigid_modes.hpp"
 #include "geardyn/system/probes.hpp"
 #include "geardyn/system/system_model.hpp"
 
@@ -54,7 +55,7 @@ struct RigidModes {
 
 /// @brief Rigid modes of the mean stiffness `mean_stiffness` (dense symmetric eigen-solve).
 /// @param[in] null_tol eigenvalues below null_tol·max count as zero.
-RigidModes ComputeRigidModes(const MatrixX& mean_stiffness, double null_tol = 1e-10);
+RigidModes ComputeRigidModes(const MatrixX& mean_stiffness, double null_tol = kRigidNullTol);
 
 /// @brief Removes the unbalanced part of F_0 (in place); returns its size relative to F_0, both
 /// in the scaled coordinates D^{-1/2} f.

@@ -573,6 +573,7 @@ HbResult HarmonicBalanceSolver::Impl::SolveFixed(int H, double f_m) {
   result.summary.counters["harmonics"] = H;
   result.summary.counters["kept_harmonics"] = static_cast<long>(s.ks.size());
   result.summary.counters["forcing_classes"] = static_cast<long>(s.classes.size());
+  result.summary.counters["rigid_body_modes"] = rigid.count();  // rigid_modes.hpp criterion
   result.summary.warnings = warnings;
   if (!undamped.note.empty()) result.summary.warnings.push_back(undamped.note);
   if (s.unbalanced > 1e-8) {

@@ -55,6 +55,10 @@ bool NhbOptions::IsValid(std::string* why) const {
   else if (samples_per_harmonic < 4)
     s << "samples_per_harmonic: must be ≥ 4 (exact Toeplitz Jacobian), got "
       << samples_per_harmonic;
+  else if (samples_per_harmonic > kMaxSamplesPerHarmonic)
+    s << "samples_per_harmonic: must be ≤ " << kMaxSamplesPerHarmonic << ", got "
+      << samples_per_harmonic << " (an FFT of " << 2.0 * samples_per_harmonic
+      << "·H samples per residual; the AFT error is past round-off long before)";
   else if (!(newton_tolerance > 0))
     s << "newton_tolerance: must be > 0, got " << newton_tolerance;
   else if (!(stability_margin >= 0) || !std::isfinite(stability_margin))
@@ -63,6 +67,9 @@ bool NhbOptions::IsValid(std::string* why) const {
     s << "max_newton_iterations: must be ≥ 1, got " << max_newton_iterations;
   else if (monodromy_steps < 0)
     s << "monodromy_steps: must be ≥ 0 (0 = automatic), got " << monodromy_steps;
+  else if (monodromy_steps > kMaxMonodromySteps)
+    s << "monodromy_steps: must be ≤ " << kMaxMonodromySteps << ", got " << monodromy_steps
+      << " (that many 2N×2N matrix exponentials and products per point)";
   else
     return true;
   return Fail(why, s.str());
@@ -78,6 +85,9 @@ bool NhbContinuationOptions::IsValid(std::string* why) const {
     s << "steps: need 0 < min_step ≤ initial_step ≤ max_step";
   else if (max_points < 2)
     s << "max_points: must be ≥ 2, got " << max_points;
+  else if (max_points > kMaxPoints)
+    s << "max_points: must be ≤ " << kMaxPoints << ", got " << max_points
+      << " (every point keeps N·(2H+1) harmonics and 2N multipliers)";
   else if (max_corrector_iterations < 1)
     s << "max_corrector_iterations: must be ≥ 1";
   else if (!(max_tangent_angle > 0))

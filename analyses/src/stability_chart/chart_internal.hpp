@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "geardyn/analyses/stability_chart.hpp"
@@ -16,8 +17,10 @@ namespace geardyn::internal {
 void ParallelFor(long n, int num_threads, const std::function<void(long i, int thread)>& body,
                  const ChartProgressCallback& progress, const char* phase);
 
-/// Threads to use for options.num_threads (0 = omp_get_max_threads()).
-int ResolveThreadCount(int requested);
+/// @brief Threads to use for options.num_threads (0 = omp_get_max_threads()), clamped to the
+/// hardware threads (omp_get_num_procs()) and to `work` items; `note` (may be null) says so when
+/// a positive request is reduced.
+int ResolveThreadCount(int requested, long work, std::string* note);
 
 /// True when the point is unstable: max|λ| > 1 + max(threshold, error_estimate).
 inline bool IsUnstable(const ChartPointResult& r, double threshold) {

@@ -26,6 +26,9 @@ bool ChartAxis::IsValid(const std::string& what, std::string* why) const {
   std::ostringstream s;
   if (num_points < 2) {
     s << what << ": the number of points must be at least 2, got " << num_points;
+  } else if (num_points > kMaxChartAxisPoints) {
+    s << what << ": the number of points must be at most " << kMaxChartAxisPoints << ", got "
+      << num_points << " (each point of an axis is a row or column of Floquet solves)";
   } else if (!std::isfinite(lo) || !std::isfinite(hi)) {
     s << what << ": the bounds must be finite, got " << lo << ":" << hi;
   } else if (!(lo < hi)) {
@@ -33,6 +36,20 @@ bool ChartAxis::IsValid(const std::string& what, std::string* why) const {
   } else {
     return true;
   }
+  if (why) *why = s.str();
+  return false;
+}
+
+bool IsValidChartGrid(const ChartAxis& x, const ChartAxis& y, std::string* why) {
+  const long long n = static_cast<long long>(x.num_points) * y.num_points;
+  if (n <= kMaxChartGridPoints) return true;
+  // Per point: max|λ|, error, f_m (3 doubles), ok, stable (2 bytes), region (int).
+  constexpr double kBytesPerPoint = 3 * sizeof(double) + 2 + sizeof(int);
+  std::ostringstream s;
+  s << "grid: " << x.num_points << " × " << y.num_points << " = " << n
+    << " points exceed the limit " << kMaxChartGridPoints << ": that is " << n
+    << " Floquet solves (plus the transition-curve bisections) and "
+    << static_cast<double>(n) * kBytesPerPoint / 1e9 << " GB of per-point results";
   if (why) *why = s.str();
   return false;
 }
@@ -79,8 +96,19 @@ const char* ToString(ResonanceKind kind) {
 
 namespace internal {
 
-int ResolveThreadCount(int requested) {
-  return requested > 0 ? requested : std::max(1, omp_get_max_threads());
+int ResolveThreadCount(int requested, long work, std::string* note) {
+  // More threads than hardware threads or than work items only cost memory (one evaluator, i.e.
+  // one model, per thread) and, past a few 10⁴, make the OpenMP runtime fail.
+  const int hardware = std::max(1, omp_get_num_procs());
+  const long cap = std::max(1L, std::min<long>(hardware, work));
+  const int wanted = requested > 0 ? requested : std::max(1, omp_get_max_threads());
+  const int used = static_cast<int>(std::min<long>(wanted, cap));
+  if (requested > used && note != nullptr) {
+    *note = "num_threads: " + std::to_string(requested) + " requested, " + std::to_string(used) +
+            " used (" + std::to_string(hardware) + " hardware threads, " + std::to_string(work) +
+            " grid points)";
+  }
+  return used;
 }
 
 void ParallelFor(long n, int num_threads, const std::function<void(long i, int thread)>& body,
@@ -121,7 +149,8 @@ StabilityChartResult ComputeStabilityChart(const ChartAxis& x, const ChartAxis& 
                                            const StabilityChartOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   std::string why;
-  if (!x.IsValid("x axis", &why) || !y.IsValid("y axis", &why) || !options.IsValid(&why)) {
+  if (!x.IsValid("x axis", &why) || !y.IsValid("y axis", &why) || !IsValidChartGrid(x, y, &why) ||
+      !options.IsValid(&why)) {
     throw InvalidInput("ComputeStabilityChart: " + why);
   }
   if (!make_evaluator) throw InvalidInput("ComputeStabilityChart: make_evaluator is empty");
@@ -132,12 +161,15 @@ StabilityChartResult ComputeStabilityChart(const ChartAxis& x, const ChartAxis& 
                        std::to_string(rows));
   }
 
-  const int threads = internal::ResolveThreadCount(options.num_threads);
+  const long grid_points = static_cast<long>(x.num_points) * y.num_points;
+  std::string thread_note;
+  const int threads = internal::ResolveThreadCount(options.num_threads, grid_points, &thread_note);
   std::vector<ChartEvaluator> evaluators;
   evaluators.reserve(threads);
   for (int t = 0; t < threads; ++t) evaluators.push_back(make_evaluator());
 
   StabilityChartResult chart;
+  if (!thread_note.empty()) chart.summary.warnings.push_back(thread_note);
   chart.x_axis = x;
   chart.y_axis = y;
   const long n = static_cast<long>(x.num_points) * y.num_points;

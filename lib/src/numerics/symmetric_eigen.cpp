@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/numerics/rigid_modes.hpp"
 #include "numerics/symmetric_eigen_internal.hpp"
 
 namespace geardyn {
@@ -62,12 +63,29 @@ GeneralizedEigenResult SolveGeneralizedEigenDense(const MatrixX& K, const Matrix
     summary.message = "the tridiagonal QR iteration of L⁻¹KL⁻ᵀ did not converge";
   } else {
     MatrixX vectors;
+    int rigid_count = -1;
     if (options.compute_vectors) {
       vectors = eigen.eigenvectors();
       cholesky.matrixU().solveInPlace(vectors);  // already M-orthonormal: no renormalization
+    } else {
+      // Without vectors, the rigid-body criterion (rigid_modes.hpp) as a count: the eigenvalues
+      // ≤ zero_tol of the unit-diagonal K̃ = D^{-1/2} K D^{-1/2} (values only, O(n³) like C's).
+      const VectorX inv_sqrt_d = RigidScaling(K.diagonal()).cwiseSqrt().cwiseInverse();
+      const MatrixX k_scaled = inv_sqrt_d.asDiagonal() * K * inv_sqrt_d.asDiagonal();
+      const Eigen::SelfAdjointEigenSolver<MatrixX> scaled(k_scaled, Eigen::EigenvaluesOnly);
+      if (scaled.info() != Eigen::Success) {
+        summary.status = Status::kNotConverged;
+        summary.message = "the tridiagonal QR iteration of D^{-1/2}KD^{-1/2} did not converge";
+        summary.wall_time_s =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return result;
+      }
+      rigid_count =
+          static_cast<int>((scaled.eigenvalues().array().abs() <= options.zero_tol).count());
     }
-    internal::FinalizeEigenpairs(eigen.eigenvalues(), std::move(vectors), MatrixX(),
-                                 options.zero_tol, "the dense symmetric eigensolver", &result);
+    internal::FinalizeEigenpairs(eigen.eigenvalues(), std::move(vectors), MatrixX(), K.diagonal(),
+                                 rigid_count, options.zero_tol, "the dense symmetric eigensolver",
+                                 &result);
   }
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

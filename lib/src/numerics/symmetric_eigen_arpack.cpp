@@ -222,8 +222,9 @@ GeneralizedEigenResult SolveGeneralizedEigenArpack(const SparseMatrix& K, const 
     summary.message = op.factorization().message;
   } else {
     const SparseMatrixOperator mass(M);
+    // Ritz vectors always: the rigid-body criterion (rigid_modes.hpp) reads φᵀ diag(K) φ.
     LanczosOutcome run = RunShiftInvertLanczos(op, mass, num_modes, ncv, options.tol,
-                                               options.max_iterations, options.compute_vectors);
+                                               options.max_iterations, /*want_vectors=*/true);
     summary.counters["iterations"] = run.iterations;
     summary.counters["operator_applications"] = run.operator_applications;
     summary.counters["mass_applications"] = run.mass_applications;
@@ -254,10 +255,12 @@ GeneralizedEigenResult SolveGeneralizedEigenArpack(const SparseMatrix& K, const 
     }
     summary.message = out.str();
 
-    MatrixX M_vectors;
-    if (run.vectors.size() > 0) M_vectors = M * run.vectors;
+    if (run.vectors.cols() != run.values.size()) run.vectors.setZero(n, run.values.size());
+    const MatrixX M_vectors = M * run.vectors;
     internal::FinalizeEigenpairs(std::move(run.values), std::move(run.vectors), M_vectors,
-                                 options.zero_tol, "ARPACK shift-invert Lanczos", &result);
+                                 VectorX(K.diagonal()), /*rigid_count=*/-1, options.zero_tol,
+                                 "ARPACK shift-invert Lanczos", &result);
+    if (!options.compute_vectors) result.vectors.resize(0, 0);
     // An indefinite K − σM at σ < 0 means the pencil has an eigenvalue below σ: K is not PSD,
     // even if that eigenvalue is not among the ones nearest σ.
     if (result.sigma < 0.0 && options.factorization != ShiftFactorization::kLu &&

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/numerics/rigid_modes.hpp"
 
 namespace geardyn::internal {
 namespace {
@@ -94,11 +95,11 @@ double SpectrumScale(const VectorX& K_diagonal, const VectorX& M_diagonal) {
   return scale > 0.0 && std::isfinite(scale) ? scale : 1.0;
 }
 
-void FinalizeEigenpairs(VectorX values, MatrixX vectors, const MatrixX& M_vectors, double zero_tol,
+void FinalizeEigenpairs(VectorX values, MatrixX vectors, const MatrixX& M_vectors,
+                        const VectorX& K_diagonal, int rigid_count, double zero_tol,
                         const std::string& step, GeneralizedEigenResult* result) {
   Summary& summary = result->summary;
-  const bool want_vectors = vectors.size() > 0;
-  if (!values.allFinite() || (want_vectors && !vectors.allFinite())) {
+  if (!values.allFinite() || !vectors.allFinite()) {
     summary.status = Status::kNumericalIssue;
     summary.message = "non-finite eigenvalue or eigenvector from " + step;
     result->eigenvalues.resize(0);
@@ -107,54 +108,80 @@ void FinalizeEigenpairs(VectorX values, MatrixX vectors, const MatrixX& M_vector
     return;
   }
   const Eigen::Index m = values.size();
+  const bool have_vectors = vectors.cols() == m && m > 0;
+  GEARDYN_DEMAND(have_vectors || rigid_count >= 0 || m == 0);
   std::vector<Eigen::Index> order(static_cast<std::size_t>(m));
   std::iota(order.begin(), order.end(), Eigen::Index{0});
   std::stable_sort(order.begin(), order.end(),
                    [&values](Eigen::Index a, Eigen::Index b) { return values(a) < values(b); });
 
-  const double zero_bound = zero_tol * result->spectrum_scale;
+  // M-normalize and fix the sign of every vector (in the sorted order).
+  MatrixX sorted(have_vectors ? vectors.rows() : 0, have_vectors ? m : 0);
+  for (Eigen::Index k = 0; k < sorted.cols(); ++k) {
+    const Eigen::Index source = order[static_cast<std::size_t>(k)];
+    double factor = 1.0;
+    if (M_vectors.size() > 0) {
+      const double m_norm_squared = vectors.col(source).dot(M_vectors.col(source));
+      if (m_norm_squared > 0.0) factor = 1.0 / std::sqrt(m_norm_squared);
+    }
+    Eigen::Index largest = 0;
+    vectors.col(source).cwiseAbs().maxCoeff(&largest);
+    const double sign = vectors(largest, source) < 0.0 ? -1.0 : 1.0;
+    sorted.col(k) = (sign * factor) * vectors.col(source);
+  }
+
+  // The one rigid-body criterion (rigid_modes.hpp). With vectors, per pair: φᵀMφ = 1 and
+  // φᵀK̄φ = λ, rigid when |λ| ≤ zero_tol·φᵀDφ, not PSD below −zero_tol·φᵀDφ. Without them, the
+  // caller counted the eigenvalues ≤ zero_tol of the unit-diagonal K̃ (the same criterion on the
+  // null space): the rigid_count smallest |λ| are the rigid ones, and "not PSD" falls back to
+  // −zero_tol·s.
+  const VectorX scaling = RigidScaling(K_diagonal);
+  std::vector<char> rigid(static_cast<std::size_t>(m), 0);
+  if (!have_vectors && m > 0) {
+    std::vector<Eigen::Index> by_magnitude(static_cast<std::size_t>(m));
+    std::iota(by_magnitude.begin(), by_magnitude.end(), Eigen::Index{0});
+    std::stable_sort(by_magnitude.begin(), by_magnitude.end(), [&](Eigen::Index a, Eigen::Index b) {
+      return std::abs(values(order[static_cast<std::size_t>(a)])) <
+             std::abs(values(order[static_cast<std::size_t>(b)]));
+    });
+    for (int i = 0; i < std::min<Eigen::Index>(rigid_count, m); ++i) {
+      rigid[static_cast<std::size_t>(by_magnitude[static_cast<std::size_t>(i)])] = 1;
+    }
+  }
   result->eigenvalues.resize(m);
   result->num_rigid_body_modes = 0;
-  double most_negative = 0.0;
+  double most_negative = 0.0, negative_bound = 0.0;
   for (Eigen::Index k = 0; k < m; ++k) {
     double lambda = values(order[static_cast<std::size_t>(k)]);
-    if (std::abs(lambda) <= zero_bound) {
+    const bool is_rigid = have_vectors
+                              ? IsRigidBodyPattern(lambda, scaling, sorted.col(k), zero_tol)
+                              : rigid[static_cast<std::size_t>(k)] != 0;
+    const double bound = have_vectors
+                             ? zero_tol * sorted.col(k).dot(scaling.cwiseProduct(sorted.col(k)))
+                             : zero_tol * result->spectrum_scale;
+    if (is_rigid) {
       lambda = 0.0;
       ++result->num_rigid_body_modes;
-    } else if (lambda < 0.0) {
-      most_negative = std::min(most_negative, lambda);
+    } else if (lambda < -bound && lambda < most_negative) {
+      most_negative = lambda;
+      negative_bound = bound;
     }
     result->eigenvalues(k) = lambda;
   }
-
-  if (want_vectors) {
-    result->vectors.resize(vectors.rows(), m);
-    for (Eigen::Index k = 0; k < m; ++k) {
-      const Eigen::Index source = order[static_cast<std::size_t>(k)];
-      double factor = 1.0;
-      if (M_vectors.size() > 0) {
-        const double m_norm_squared = vectors.col(source).dot(M_vectors.col(source));
-        if (m_norm_squared > 0.0) factor = 1.0 / std::sqrt(m_norm_squared);
-      }
-      Eigen::Index largest = 0;
-      vectors.col(source).cwiseAbs().maxCoeff(&largest);
-      const double sign = vectors(largest, source) < 0.0 ? -1.0 : 1.0;
-      result->vectors.col(k) = (sign * factor) * vectors.col(source);
-    }
-  } else {
-    result->vectors.resize(0, 0);
-  }
+  result->vectors = std::move(sorted);
 
   if (result->num_rigid_body_modes > 0) {
     std::ostringstream out;
     out << result->num_rigid_body_modes
-        << " rigid-body mode(s): zero frequency (|λ| ≤ zero_tol·s = " << zero_bound << ")";
+        << " rigid-body mode(s): zero frequency (|φᵀK̄φ| ≤ zero_tol·φᵀ diag(K̄) φ, zero_tol = "
+        << zero_tol << ")";
     summary.warnings.push_back(out.str());
   }
   if (most_negative < 0.0) {
     std::ostringstream out;
-    out << "K is not positive semidefinite: eigenvalue λ = " << most_negative
-        << " < −zero_tol·s = " << -zero_bound << " (from " << step << ")";
+    out << "K is not positive semidefinite: eigenvalue λ = " << most_negative << " < −"
+        << negative_bound << " (zero_tol times φᵀ diag(K) φ, or times s without "
+        << "vectors; from " << step << ")";
     if (summary.status == Status::kSuccess) {
       summary.status = Status::kNumericalIssue;
       summary.message = out.str();

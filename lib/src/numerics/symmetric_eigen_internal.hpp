@@ -28,15 +28,19 @@ double SpectrumScale(const VectorX& K_diagonal, const VectorX& M_diagonal);
 
 /// @brief Post-processing shared by both solvers, writing into `result`:
 /// * non-finite λ or φ → kNumericalIssue naming `step`, empty eigenvalues and vectors;
-/// * sorts ascending (vectors follow), sets |λ| ≤ zero_tol·s to 0 and counts them as rigid-body
-///   modes with a warning;
-/// * λ < −zero_tol·s → kNumericalIssue ("K is not positive semidefinite") unless the status is
-///   already not kSuccess;
+/// * sorts ascending (vectors follow);
 /// * each vector M-normalized with `M_vectors` = M·vectors (n × m; empty when the vectors are
-///   already M-normalized or not computed) and its sign fixed so that its entry of largest
-///   magnitude is positive.
+///   already M-normalized) and its sign fixed so that its entry of largest magnitude is positive;
+/// * the one rigid-body criterion of rigid_modes.hpp (D = RigidScaling(K_diagonal)): with
+///   vectors (n × m), a pair with |λ| ≤ zero_tol·φᵀDφ (φᵀMφ = 1) is rigid; without vectors
+///   (0 columns) the `rigid_count` ≥ 0 eigenvalues of smallest |λ| are, rigid_count being the
+///   number of eigenvalues ≤ zero_tol of the unit-diagonal K̃ = D^{-1/2}KD^{-1/2} (the caller's
+///   count). Rigid λ are set to 0 and reported in a warning;
+/// * any other λ below −zero_tol·φᵀDφ (without vectors −zero_tol·s) → kNumericalIssue ("K is
+///   not positive semidefinite") unless the status is already not kSuccess.
 /// Expects result->spectrum_scale set; keeps an existing non-success status and message.
-void FinalizeEigenpairs(VectorX values, MatrixX vectors, const MatrixX& M_vectors, double zero_tol,
+void FinalizeEigenpairs(VectorX values, MatrixX vectors, const MatrixX& M_vectors,
+                        const VectorX& K_diagonal, int rigid_count, double zero_tol,
                         const std::string& step, GeneralizedEigenResult* result);
 
 }  // namespace geardyn::internal

@@ -110,6 +110,11 @@ void ValidateSpec(const GearPairSpec& spec) {
   GEARDYN_THROW_UNLESS(
       FinitePositive(spec.normal_module),
       "normal_module: must be finite and positive, got " << spec.normal_module << " m");
+  GEARDYN_THROW_UNLESS(spec.normal_module >= kMinNormalModule,
+                       "normal_module: must be at least "
+                           << kMinNormalModule << " m (" << kMinNormalModule * 1e3
+                           << " mm, below the finest micro gears), got " << spec.normal_module
+                           << " m");
   GEARDYN_THROW_UNLESS(std::isfinite(spec.normal_pressure_angle) &&
                            spec.normal_pressure_angle > 0.0 &&
                            spec.normal_pressure_angle < kMaxPressureAngle,
@@ -465,6 +470,14 @@ GearPairGeometry CalcGearPairGeometry(const GearPairSpec& spec) {
                                                     << " is below 1 (short by "
                                                     << 1.0 - g.transverse_contact_ratio << ")");
   g.overlap_contact_ratio = g.face_width * std::sin(beta) / (kPi * m_n);
+  // Every unit of ε_γ is one more contact line evaluated at every θ (and one more slice set):
+  // bound it where no manufactured face width reaches.
+  GEARDYN_THROW_UNLESS(g.overlap_contact_ratio <= kMaxOverlapRatio,
+                       "overlap_contact_ratio: ε_β = b sin β / (π m_n) = "
+                           << g.overlap_contact_ratio << " exceeds " << kMaxOverlapRatio
+                           << " (face width " << g.face_width << " m = " << g.face_width / m_n
+                           << " normal modules): that many contact lines "
+                              "at every angle; check face_width and normal_module");
   g.total_contact_ratio = g.transverse_contact_ratio + g.overlap_contact_ratio;
   g.gear_ratio = z2 / z1;
 

@@ -11,6 +11,7 @@
 
 #include <Eigen/LU>
 #include <cmath>
+#include <complex>
 #include <numbers>
 #include <variant>
 #include <vector>
@@ -55,14 +56,40 @@ class SystemTimeIntegrator {
   /// Integrates from the static deflection at rest for `settle` mesh periods at f_m [Hz], then
   /// records `record` periods with `per_period` samples each.
   SystemTiStats Run(double mesh_frequency_hz, int settle, int record, int per_period = 256) {
-    omega_ = 2.0 * std::numbers::pi * mesh_frequency_hz;
     VectorX y = VectorX::Zero(2 * n_);
     y.head(n_) = SolveStaticDeflection(model_).deflection;
+    phase_ = 0.0;
+    return Continue(mesh_frequency_hz, settle, record, per_period, &y);
+  }
+
+  /// The state [q; q̇] at t = 0 of a periodic orbit q = Q_0 + 2 Re Σ_k Q_k e^{ikωt} (ω = 2π f_m/p,
+  /// `harmonics` = (N × (H+1)) one-sided Q_k), to start an integration on a given branch.
+  VectorX StateFromHarmonics(const MatrixXc& harmonics, double mesh_frequency_hz,
+                             int period_multiple) const {
+    const double w = 2.0 * std::numbers::pi * mesh_frequency_hz / period_multiple;
+    VectorX y = VectorX::Zero(2 * n_);
+    y.head(n_) = harmonics.col(0).real();
+    for (Eigen::Index k = 1; k < harmonics.cols(); ++k) {
+      y.head(n_) += 2.0 * harmonics.col(k).real();
+      y.tail(n_) +=
+          2.0 * (std::complex<double>(0.0, static_cast<double>(k) * w) * harmonics.col(k)).real();
+    }
+    return y;
+  }
+
+  /// Continues the integration from the state *y (updated) at f_m [Hz]: `settle` periods, then
+  /// `record` periods sampled. The mesh phase θ stays continuous across calls (a change of f_m
+  /// changes only dθ/dt), so that successive calls form a stepped frequency sweep; the phase
+  /// starts at θ = 0 at the first call, as for an orbit from StateFromHarmonics.
+  SystemTiStats Continue(double mesh_frequency_hz, int settle, int record, int per_period,
+                         VectorX* state, double rel_tol = 1e-10) {
+    omega_ = 2.0 * std::numbers::pi * mesh_frequency_hz;
+    VectorX& y = *state;
     gsl_odeiv2_system sys{&Rhs, nullptr, static_cast<size_t>(2 * n_), this};
     gsl_odeiv2_driver* d =
-        gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, 1e-8 / omega_, 1e-10, 1e-10);
+        gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, 1e-8 / omega_, rel_tol, rel_tol);
     const double T = 2.0 * std::numbers::pi / omega_;
-    double t = 0.0;
+    double t = 0.0;  // local time of this call; θ = θ_start + ω t
     SystemTiStats st;
     std::vector<double> dte;
     int loss = 0;
@@ -77,14 +104,17 @@ class SystemTimeIntegrator {
         if (p >= settle) {
           const Vector2 delta = CalcMeshDeflection(model_, MeshIndex(0), y.head(n_));
           const auto& core = std::get<SliceMeshCore>(model_.meshes()[0].core);
-          const SliceForce f = EvalSliceForce(
-              core, slice_ws_[0], model_.meshes()[0].MeshPhase(omega_ * t), delta(0), delta(1));
+          const SliceForce f =
+              EvalSliceForce(core, slice_ws_[0], model_.meshes()[0].MeshPhase(phase_ + omega_ * t),
+                             delta(0), delta(1));
           dte.push_back(delta(0));
           if (f.num_loaded == 0) ++loss;
         }
       }
     }
     gsl_odeiv2_driver_free(d);
+    phase_ = std::fmod(phase_ + omega_ * t,
+                       2.0 * std::numbers::pi * static_cast<double>(model_.period_meshes()));
     if (dte.empty()) return st;
     double mx = -1e300, mn = 1e300, sum = 0.0;
     for (double v : dte) {
@@ -111,8 +141,9 @@ class SystemTimeIntegrator {
     for (int k = 0; k < self->model_.num_meshes(); ++k) {
       const SystemMesh& m = self->model_.meshes()[k];
       const Vector2 delta = CalcMeshDeflection(self->model_, MeshIndex(k), q);
-      const SliceForce f = EvalSliceForce(std::get<SliceMeshCore>(m.core), self->slice_ws_[k],
-                                          m.MeshPhase(self->omega_ * t), delta(0), delta(1));
+      const SliceForce f =
+          EvalSliceForce(std::get<SliceMeshCore>(m.core), self->slice_ws_[k],
+                         m.MeshPhase(self->phase_ + self->omega_ * t), delta(0), delta(1));
       // Force on the pair's coordinates: −Gᵀ F (mesh_core.hpp sign convention).
       const Vector12 fp = -m.G.transpose() * f.force;
       for (int a = 0; a < 12; ++a) {
@@ -127,6 +158,7 @@ class SystemTimeIntegrator {
   SystemModel model_;
   int n_ = 0;
   double omega_ = 1.0;
+  double phase_ = 0.0;  // θ at the start of the current call [rad]
   MatrixX C_, K0_, Minv_;
   VectorX f0_;
   std::vector<SliceMeshWorkspace> slice_ws_;

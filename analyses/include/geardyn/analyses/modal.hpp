@@ -21,10 +21,11 @@
 /// about 100 DOFs on and wins by 10⁴ at 5 000 DOFs (docs/benchmarks.md, "Modal analysis"). Forcing
 /// either path always works (equivalence tests, paired benchmarks).
 ///
-/// **Rigid-body modes** (spec 02, architecture §3.7): eigenvalues with |λ| ≤ zero_tol·s (s the
-/// spectrum scale max K̄_ii/M_ii) are set to exactly 0, reported as zero frequencies and counted
-/// in num_rigid_body_modes with a warning in summary.warnings. Never NaN, never a failure; K̄ is
-/// never inverted (the ARPACK shift lies slightly below zero).
+/// **Rigid-body modes** (spec 02, architecture §3.7): the one criterion of rigid_modes.hpp — an
+/// M-normalized pair with |λ| ≤ zero_tol·φᵀ diag(K̄) φ (a null vector of K̄ in the diagonally
+/// scaled coordinates, independent of units and masses) — is set to exactly 0, reported as zero
+/// frequencies and counted in num_rigid_body_modes with a warning in summary.warnings. Never NaN,
+/// never a failure; K̄ is never inverted (the ARPACK shift lies slightly below zero).
 ///
 /// **Energy fractions** (options.compute_energy_fractions; M-normalized φ, ω² = λ):
 /// * kinetic, per DofKind k (torsional θz, transverse x/y, axial z, tilt θx/θy):
@@ -95,6 +96,7 @@
 
 #include "geardyn/common/eigen_types.hpp"
 #include "geardyn/common/summary.hpp"
+#include "geardyn/numerics/rigid_modes.hpp"
 #include "geardyn/system/dof_map.hpp"
 #include "geardyn/system/system_model.hpp"
 
@@ -188,8 +190,8 @@ struct ModalOptions {
   int damped_max_dofs = 2000;
   /// Relative gap |f_i − f_j| ≤ tol·max(f_i, f_j) that groups modes as repeated. In (0, 1).
   double multiplicity_rel_tol = 1e-6;
-  /// |λ| ≤ zero_tol·s is a rigid-body zero (s the spectrum scale). In [0, 1).
-  double zero_tol = 1e-10;
+  /// |λ| ≤ zero_tol·φᵀ diag(K̄) φ (φᵀMφ = 1) is a rigid-body zero (rigid_modes.hpp). In [0, 1).
+  double zero_tol = kRigidNullTol;
   /// ARPACK relative accuracy of the Ritz values; 0 → machine ε. In [0, 1).
   double arpack_tol = 1e-12;
   /// Relative Frobenius residual below which C counts as Rayleigh or classical. In (0, 1).

@@ -155,8 +155,15 @@ struct NhbOptions {
   double harmonic_tolerance = 1e-6;  ///< H→2H relative RMS change target when harmonics = 0.
   int max_harmonics = 256;           ///< Upper bound of the automatic H.
   int period_multiple = 1;           ///< p ∈ {1, 2, …}: base ω = Ω/p (2: period-2 solutions).
-  /// AFT oversampling: S = max(64, this·H), even (exact integration: S = max(64, 4H)).
+  /// AFT oversampling: S = max(64, this·H), even (exact integration: S = max(64, 4H)); in
+  /// [4, kMaxSamplesPerHarmonic].
   int samples_per_harmonic = 16;
+  /// Upper bound of samples_per_harmonic: the AFT error of a kink falls as S⁻² (S⁻³ with the
+  /// switch correction), so 1024 samples per harmonic are past double precision's use.
+  static constexpr int kMaxSamplesPerHarmonic = 1024;
+  /// Upper bound of monodromy_steps: each step is a 2N × 2N Magnus exponential per point, and
+  /// 10⁵ steps per period resolve any switch to 10⁻⁵ of the period.
+  static constexpr int kMaxMonodromySteps = 100000;
   double newton_tolerance = 1e-10;  ///< ‖R‖∞ ≤ tol·(1 + ‖F̃‖∞ + ‖f₀‖∞).
   int max_newton_iterations = 40;   ///< Newton iterations per solve.
   NhbStabilityMethod stability = NhbStabilityMethod::kMonodromy;
@@ -217,7 +224,10 @@ struct NhbContinuationOptions {
   double initial_step = 0.01;        ///< Arclength step in scaled units (see below).
   double min_step = 1e-6;            ///< Smaller step after failures → stop, kNotConverged.
   double max_step = 0.05;            ///< Largest arclength step.
-  int max_points = 20000;            ///< Hard limit on points.
+  int max_points = 20000;            ///< Hard limit on points, in [2, kMaxPoints].
+  /// Upper bound of max_points: every point keeps its harmonics (N·(2H+1) values) and its
+  /// multipliers; 2·10⁶ points of a 24-harmonic, 12-DOF curve are already ≈ 10 GB.
+  static constexpr int kMaxPoints = 2000000;
   int max_corrector_iterations = 8;  ///< Corrector Newton iterations before a step is cut.
   double max_tangent_angle = 0.15;   ///< Largest angle between successive tangents [rad].
   /// Scaling of the arclength: s² = ‖Δx‖²/x_scale² + ΔΩ²/omega_scale²; 0 → automatic

@@ -56,12 +56,25 @@ struct ChartAxis {
   std::string name;    ///< free text, e.g. the scene path "operating_point.speed_rpm"
   double lo = 0.0;     ///< first value (finite, < hi) [unit of the parameter]
   double hi = 1.0;     ///< last value (finite) [unit of the parameter]
-  int num_points = 2;  ///< ≥ 2
+  int num_points = 2;  ///< in [2, kMaxChartAxisPoints]
   /// The i-th value lo + (hi − lo)·i/(n − 1), exactly lo and hi at the ends.
   double Value(int i) const;
   /// False (with the field and value in `why`, prefixed by `what`) when invalid.
   bool IsValid(const std::string& what, std::string* why) const;
 };
+
+/// Largest number of points on one chart axis: a row of the y axis builds its own model when x
+/// is the speed, and 10⁴ points resolve a parameter to 10⁻⁴ of its range (the transition curves
+/// are then bisected further, to boundary_tolerance) [-].
+inline constexpr int kMaxChartAxisPoints = 10000;
+/// Largest number of grid points x.num_points·y.num_points: each is one Floquet solve (ms to s
+/// on the built-in scenes), so 10⁶ points are hours of work already [-].
+inline constexpr long kMaxChartGridPoints = 1000000;
+
+/// @brief False (with both counts, the limit and the cost in `why`) when the grid x × y has
+/// more than kMaxChartGridPoints points. Checked by ComputeStabilityChart and, before any model
+/// is built, by the CLI.
+bool IsValidChartGrid(const ChartAxis& x, const ChartAxis& y, std::string* why);
 
 /// @brief Where the evaluator is called: the parameters, and the grid indices when the
 /// coordinate is a grid value (−1 between grid values, during the bisection).
@@ -99,7 +112,8 @@ using ChartProgressCallback = std::function<void(const ChartProgress&)>;
 
 /// @brief Options of ComputeStabilityChart.
 struct StabilityChartOptions {
-  /// Threads (0 = all cores, omp_get_max_threads()). ≥ 0.
+  /// Threads (0 = all cores, omp_get_max_threads()). ≥ 0. Clamped to the hardware threads
+  /// (omp_get_num_procs()) and to the grid points, with a warning when a request is reduced.
   int num_threads = 0;
   /// Unstable when max|λ| > 1 + max(instability_threshold, error_estimate) [-]. ≥ 0, < 1.
   double instability_threshold = 1e-9;

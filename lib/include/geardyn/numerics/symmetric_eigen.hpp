@@ -9,11 +9,16 @@
 ///
 /// **Spectrum scale.** s = max_i |K_ii| / M_ii (a Rayleigh quotient, hence a lower bound of
 /// λ_max, and in the units of λ whatever the units of the individual DOFs; s = 1 when K has a
-/// zero diagonal). Both solvers measure "zero" against it.
+/// zero diagonal). The default ARPACK shift is measured against it.
 ///
-/// **Rigid-body modes** (spec 02; architecture §3.7): every computed λ with |λ| ≤ zero_tol·s is
-/// round-off around an exact zero; it is set to exactly 0, counted in `num_rigid_body_modes` and
-/// reported as a warning, not a failure. A λ < −zero_tol·s means K is not positive semidefinite:
+/// **Rigid-body modes** (spec 02; architecture §3.7): the one criterion of rigid_modes.hpp. A
+/// computed pair with |λ| ≤ zero_tol·φᵀDφ (φᵀMφ = 1, D = diag K) is round-off around an exact
+/// zero — a null vector of K in the diagonally scaled coordinates, whatever the masses and the
+/// units; it is set to exactly 0, counted in `num_rigid_body_modes` and reported as a warning,
+/// not a failure. ARPACK always computes the Ritz vectors for this test; the dense solver without
+/// vectors applies the same criterion as a count (the eigenvalues ≤ zero_tol of the unit-diagonal
+/// D^{-1/2}KD^{-1/2}, values only) and zeroes that many eigenvalues of smallest |λ|. A
+/// λ < −zero_tol·φᵀDφ means K is not positive semidefinite:
 /// status kNumericalIssue with the offending value (the eigenpairs are still returned). Results
 /// never contain NaN: non-finite values give kNumericalIssue and empty results.
 ///
@@ -39,6 +44,7 @@
 #include "geardyn/common/eigen_types.hpp"
 #include "geardyn/common/summary.hpp"
 #include "geardyn/numerics/linear_operator.hpp"
+#include "geardyn/numerics/rigid_modes.hpp"
 
 namespace geardyn {
 
@@ -49,8 +55,8 @@ inline constexpr double kDefaultShiftFraction = 1e-6;
 struct GeneralizedEigenOptions {
   /// Return the M-orthonormal eigenvectors (pay only if asked).
   bool compute_vectors = true;
-  /// |λ| ≤ zero_tol·s is a rigid-body zero; λ < −zero_tol·s is an error (K not PSD) [-].
-  double zero_tol = 1e-10;
+  /// |λ| ≤ zero_tol·φᵀDφ is a rigid-body zero; λ < −zero_tol·φᵀDφ an error (K not PSD) [-].
+  double zero_tol = kRigidNullTol;
   /// ARPACK: relative accuracy of the Ritz values ν = 1/(λ − σ); 0 → machine ε [-].
   double tol = 1e-12;
   /// ARPACK: maximum number of implicit restarts (iparam[2], "maxit"), ≥ 1.
@@ -77,7 +83,7 @@ struct GeneralizedEigenResult {
   int num_rigid_body_modes = 0;
   /// Shift σ used by ARPACK [rad²/s²]; 0 for the dense solver (no shift).
   double sigma = 0.0;
-  /// Spectrum scale s = max_i |K_ii|/M_ii that zero_tol and the default σ refer to [rad²/s²].
+  /// Spectrum scale s = max_i |K_ii|/M_ii that the default σ refers to [rad²/s²].
   double spectrum_scale = 0.0;
   /// Status and message; counters "iterations" (ARPACK restarts), "operator_applications"
   /// (OP = (K − σM)⁻¹M), "mass_applications" (M x), "factorizations" (Cholesky of M and of

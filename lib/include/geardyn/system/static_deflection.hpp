@@ -15,14 +15,15 @@
 
 #include "geardyn/common/eigen_types.hpp"
 #include "geardyn/common/summary.hpp"
+#include "geardyn/numerics/rigid_modes.hpp"
 #include "geardyn/system/system_model.hpp"
 
 namespace geardyn {
 
 /// @brief Options of SolveStaticDeflection.
 struct StaticDeflectionOptions {
-  /// Eigenvalues of K̄ below null_tol·max|λ| count as rigid-body modes [-].
-  double null_tol = 1e-10;
+  /// Rigid-body criterion τ of rigid_modes.hpp (eigenvalues of the unit-diagonal K̃ ≤ τ) [-].
+  double null_tol = kRigidNullTol;
   /// Relative size ‖N ᵀ f̄‖/‖f̄‖ above which the load is reported as not balanced [-].
   double balance_tol = 1e-8;
   /// Samples per mesh period for the mean transmission-error load (AssembleMeanLoad).

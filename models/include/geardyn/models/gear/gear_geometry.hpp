@@ -43,6 +43,15 @@ struct GearBlank {
   std::optional<double> rim_thickness;    ///< s_R [m], rim under the teeth (ISO 6336-1 C_R)
 };
 
+/// Smallest normal module accepted [m]: 10 µm, below the finest micro-moulded and watch gears
+/// (≈ 0.02–0.05 mm). Smaller values are unit mistakes (mm given as m is 10³ too large, not
+/// small), and they make ε_β = b sin β/(π m_n), hence the contact-line count, explode.
+inline constexpr double kMinNormalModule = 1e-5;
+/// Largest overlap ratio ε_β accepted [-]: 100 contact lines across the face, i.e. b/m_n ≈ 360 at
+/// β = 60° and ≈ 1200 at 15°, where manufactured pairs stay below b/m_n ≈ 100 (ISO 6336-1
+/// treats b/m_n ≲ 50). Each unit of ε_γ is one more contact line at every angle.
+inline constexpr double kMaxOverlapRatio = 100.0;
+
 /// @brief Inputs of a parallel-axis involute gear pair.
 struct GearPairSpec {
   double normal_module = 0.0;          ///< m_n [m]
@@ -128,7 +137,8 @@ struct GearPairGeometry {
 /// @brief Derives the pair geometry and rejects pairs that cannot mesh.
 ///
 /// Without `center_distance` the pair runs at its zero-backlash centre distance. Rejections, in
-/// the order checked (the message starts with the name): bad scalars ("normal_module",
+/// the order checked (the message starts with the name): bad scalars ("normal_module" not finite
+/// or below kMinNormalModule,
 /// "normal_pressure_angle" outside (0, 45°), "helix_angle" outside [0, 60°), "pinion_hand"
 /// inconsistent with β, "<member>.teeth" < 3, "<member>.face_width", ...), "pinion.kind"
 /// (internal pinion), "gear.teeth" (ring not larger than its pinion), "profile_shift_sum" (no
@@ -143,7 +153,7 @@ struct GearPairGeometry {
 /// "<member>.tip_interference" (a tip meets the mate below its base circle),
 /// "gear.trochoid_interference" (internal pairs), "<member>.undercut",
 /// "<member>.tip_thickness_normal", "<member>.tip_clearance" (a tip reaches the mating root
-/// circle), "transverse_contact_ratio" (< 1).
+/// circle), "transverse_contact_ratio" (< 1), "overlap_contact_ratio" (> kMaxOverlapRatio).
 /// @throws InvalidInput whose message starts with the quantity's name (e.g.
 ///   "transverse_contact_ratio: 0.93 is below 1 (short by 0.07)") and says by how much the bound
 ///   is missed.
