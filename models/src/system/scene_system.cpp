@@ -39,6 +39,8 @@ double RequireMassProperty(const Scene& scene, const GearDef& gear, const char* 
   const std::string key = (gear.key.empty() ? "gear." + gear.name : gear.key) + "." + field;
   throw SceneError(scene.source, gear.line, key,
                    "required by " + analysis + " (mass matrix); the scene does not give it");
+}
+
 // A body of the placement walk: gear g is g, shaft s is num_gears + s.
 struct Endpoint {
   int node = 0;                      // walk node
