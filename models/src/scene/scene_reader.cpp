@@ -168,6 +168,11 @@ Scene Validate(const ErrorContext& ctx, const toml::table& root) {
 
   internal::AddPlanetBearings(ctx, planetary_tables, &scene);
   internal::PlaceShaftNodes(&scene);
+  if (scene.planar && !scene.shafts.empty()) {
+    ctx.Fail(root.get("planar"), "planar",
+             "a scene with [[shaft]] cannot be planar: shaft bending needs the tilts rx, ry that "
+             "the planar model holds fixed");
+  }
   scene.operating_point = internal::ReadOperatingPoint(ctx, root, scene);
   scene.damping = internal::ReadSystemDamping(ctx, root);
   internal::CheckPlanetaryOperatingPoint(ctx, planetary_tables, scene);

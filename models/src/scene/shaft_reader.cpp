@@ -156,9 +156,6 @@ ShaftDef ReadShaft(const ErrorContext& ctx, const toml::table& t, std::size_t in
       gf.CheckKnown({"gear", "station"});
       ShaftGearDef g;
       g.gear = ReadGearName(gf, "gear", "name of the [[gear]] on this shaft", scene);
-      if (scene.gear(g.gear).blank.teeth == 0) {
-        gf.Fail("gear", "'" + g.gear + "' is a planet carrier, not a gear on a shaft");
-      }
       for (const ShaftGearDef& other : shaft.gears) {
         if (other.gear == g.gear) gf.Fail("gear", "'" + g.gear + "' is already on this shaft");
       }

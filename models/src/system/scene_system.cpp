@@ -105,6 +105,9 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
                                            "from its planet's angle");
   }
 
+  GEARDYN_THROW_UNLESS(!(options.planar || scene.planar) || scene.shafts.empty(),
+                       "planar: a scene with shafts cannot be planar (shaft bending needs the "
+                       "tilts θx, θy that the planar model holds fixed)");
   SceneSystem out;
   // ---- Placement: BFS from the operating point's body over meshes and two-body bearings.
   std::string root_name = scene.operating_point.body;

@@ -191,6 +191,8 @@ std::vector<Case> Cases() {
       {"UnknownShaftKey", "density = 7850\nsections = [{ length = 0.1",
        "density = 7850\ndiameter = 3\nsections = [{ length = 0.1", "diameter = 3",
        R"(shaft\.motor\.diameter: unknown key)"},
+      {"PlanarWithShafts", "title = \"shafts\"", "title = \"shafts\"\nplanar = true",
+       "planar = true", R"(planar: a scene with \[\[shaft\]\] cannot be planar)"},
       {"DampingRatioOne", "modal_ratio = 0.02", "modal_ratio = 1.0", "modal_ratio = 1.0",
        R"(damping\.modal_ratio: must be a damping ratio in \[0, 1\), got 1$)"},
       {"DampingBothKinds", "modal_ratio = 0.02", "modal_ratio = 0.02\nrayleigh_beta = 1e-5",
