@@ -92,7 +92,7 @@ std::vector<UndampedMode> UndampedModes(const SystemModel& model);
 
 /// Largest Hill matrix dim·(2H+1) [-]: a complex eigen solve with vectors of this size takes
 /// ≈ 1 s (docs/benchmarks.md "Floquet").
-inline constexpr long kMaxHillSize = 1600;
+inline constexpr long kMaxHillSize = 800;
 /// @brief Throws InvalidInput naming hill_harmonics (requested H) or the method, with the size,
 /// memory and flop count, when dim·(2H+1) > kMaxHillSize.
 void CheckHillSize(int dim, int harmonics, bool requested);

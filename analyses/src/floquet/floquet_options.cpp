@@ -42,11 +42,11 @@ bool FloquetOptions::IsValid(std::string* why) const {
     os << "mesh_frequency_hz: must be finite and > 0, got " << mesh_frequency_hz;
   } else if (!(std::isfinite(tolerance) && tolerance > 0.0 && tolerance < 1.0)) {
     os << "tolerance: must be in (0, 1), got " << tolerance;
-  } else if (hill_harmonics < 0 || hill_harmonics > 399) {
-    // 399: the largest H whose Hill matrix (2·(2H+1) for the smallest state, 2 rows) stays within
-    // the 1600 rows of internal::kMaxHillSize; larger systems are checked with their dimension.
-    os << "hill_harmonics: must be in [0, 399] (0 = automatic; a Hill matrix of dim·(2H+1) rows "
-          "is limited to 1600), got "
+  } else if (hill_harmonics < 0 || hill_harmonics > 199) {
+    // 199: the largest H whose Hill matrix (2·(2H+1) for the smallest state, 2 rows) stays within
+    // the 800 rows of internal::kMaxHillSize; larger systems are checked with their dimension.
+    os << "hill_harmonics: must be in [0, 199] (0 = automatic; a Hill matrix of dim·(2H+1) rows "
+          "is limited to 800), got "
        << hill_harmonics;
   } else if (num_modes < 0) {
     os << "num_modes: must be >= 0, got " << num_modes;

@@ -86,10 +86,11 @@ FloquetResult ComputeFloquetState(const StateSystem& sys, const FloquetOptions& 
   // An overflowing |λ| with finite exponents is an answer (a fast growth); a NaN or an infinite
   // exponent is a failure, whatever the convergence said.
   if (!result.exponents.allFinite() || !result.multipliers.allFinite()) {
+    // The exponents are the exact representation (an overflowing λ = polar(inf, arg) may hold
+    // inf·0 = NaN in one component); a NaN |λ| (hypot is inf whenever one part is) is a failure.
     bool failed = !result.exponents.allFinite();
     for (Eigen::Index i = 0; i < result.multipliers.size(); ++i) {
-      failed = failed || std::isnan(result.multipliers[i].real()) ||
-               std::isnan(result.multipliers[i].imag());
+      failed = failed || std::isnan(std::abs(result.multipliers[i]));
     }
     if (failed && result.summary.status != Status::kNumericalIssue) {
       result.summary.status = Status::kNumericalIssue;

@@ -29,8 +29,12 @@ void ExpectSameVerdict(const FloquetResult& r, const FloquetResult& reference) {
     return;
   }
   const double e = reference.summary.error_estimate, m = reference.max_abs_multiplier;
-  if (m - e > 1.0) EXPECT_EQ(r.verdict, FloquetVerdict::kUnstable);
-  if (m + e <= 1.0) EXPECT_EQ(r.verdict, FloquetVerdict::kStable);
+  if (m - e > 1.0) {
+    EXPECT_EQ(r.verdict, FloquetVerdict::kUnstable);
+  }
+  if (m + e <= 1.0) {
+    EXPECT_EQ(r.verdict, FloquetVerdict::kStable);
+  }
 }
 
 // Smooth mesh stiffness (the Magnus path of kAuto) on the damped hand pair, from a few Hz of mesh

@@ -102,8 +102,8 @@ struct FloquetOptions {
   /// the Magnus step doubling meets it on the dominant multipliers.
   double tolerance = 1e-10;
   /// kHill: number of harmonics H (0 = chosen from the tolerance); the Hill matrix dim·(2H+1)
-  /// must not exceed 1600 (checked against the state dimension by ComputeFloquet, whose message
-  /// gives the size, memory and flops), so H ≤ 399 in any case.
+  /// must not exceed 800 (checked against the state dimension by ComputeFloquet, whose message
+  /// gives the size, memory and flops), so H ≤ 199 in any case.
   int hill_harmonics = 0;
   /// kModalProjection: number of LTI modes kept, the lowest ones (0 = automatic: the modes that
   /// can resonate with f_m and the mesh modes first, widened until the tolerance is met).
