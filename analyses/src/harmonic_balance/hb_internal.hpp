@@ -73,8 +73,11 @@ std::vector<std::string> CheckLinearHbModel(const SystemModel& model);
 /// forcing repeats over the hunting period (pitch errors, runout).
 std::int64_t OperatorPeriodMeshes(const SystemModel& model);
 
-/// @brief Smallest power of two ≥ max(256, 8(H+1)), or `requested` when > 0.
-int ChooseTimeSamples(int harmonics, int requested);
+/// @brief `requested` when > 0, else the smallest q·2^j ≥ max(256, 8(k_max+1)): a power of two
+/// when q = 1, and a whole number of samples per operator period otherwise (the sampler then
+/// evaluates K2, C2 over one operator period only).
+/// @param[in] highest k_max. @param[in] requested HbOptions::time_samples. @param[in] q P/P_K.
+int ChooseTimeSamples(int highest, int requested, std::int64_t q = 1);
 
 // ------------------------------------------------------------------ outputs
 

@@ -84,10 +84,22 @@ HbOutputSampler::HbOutputSampler(const SystemModel& model, int harmonics, int ti
     const SystemMesh& mesh = model.meshes()[k];
     const auto* core = std::get_if<LinearMeshCore>(&mesh.core);
     if (core == nullptr) continue;
+    // K2, C2 repeat every `cycle` samples when S holds a whole number of stiffness periods
+    // (ChooseTimeSamples): evaluated once per period, copied over the hunting period.
+    const std::int64_t repeats = model.period_meshes() / PeriodMeshes(core->stiffness());
+    const int cycle = S_ % repeats == 0 ? static_cast<int>(S_ / repeats) : S_;
+    k2_[k].reserve(static_cast<size_t>(S_));
+    c2_[k].reserve(static_cast<size_t>(S_));
+    eps_[k].reserve(static_cast<size_t>(S_));
     for (int s = 0; s < S_; ++s) {
       const double phase = mesh.MeshPhase(period * s / S_);
-      k2_[k].push_back(EvalStiffnessCore(*core, phase));
-      c2_[k].push_back(EvalDampingCore(*core, phase, mesh.damping_coefficient));
+      if (s < cycle) {
+        k2_[k].push_back(EvalStiffnessCore(*core, phase));
+        c2_[k].push_back(EvalDampingCore(*core, phase, mesh.damping_coefficient));
+      } else {
+        k2_[k].push_back(k2_[k][s % cycle]);
+        c2_[k].push_back(c2_[k][s % cycle]);
+      }
       eps_[k].push_back(EvalTransmissionError(*core, phase));
     }
   }

@@ -176,9 +176,9 @@ double HarmonicBalanceSolver::Impl::EstimateBytes(int H) const {
   const double kmax = H * q + q / 2.0;
   const double r = 2.0 * meshes;
   // Mesh harmonics (3 arrays of 2×2 complex up to (2H+1)q) and the expansion's samples (8
-  // channels, ≥ 2 per harmonic, real and complex), the response (n × (kmax+1)), the sampler (S ≤
-  // 16(kmax+1) samples of q, q̇, FFT buffers and the per-mesh K2, C2, ε), the per-harmonic solves
-  // (ks ≤ 2 kmax/q·q… bounded by kmax+1 columns of n(1+r)), the class coupling ((2H+2)r)².
+  // channels, real and complex), the response (n × (k_max+1)), the sampler (up to 16(k_max+1)
+  // samples of q, q̇ and the FFT buffers, and per mesh K2, C2, ε), the per-harmonic solves (at
+  // most (2H+2) min(q, 2H+2) kept harmonics of n(1+r) columns), the class coupling ((2H+2)r)².
   const double harm = (2.0 * H + 2.0) * q;
   double bytes = meshes * harm * 160.0 + harm * 2.0 * 8.0 * 24.0;
   bytes += 16.0 * n * (kmax + 1.0);
@@ -336,7 +336,7 @@ HbSetup& HarmonicBalanceSolver::Impl::Setup(int H) {
                            << 2 * s->kmax << " (the highest kept harmonic of the period, H = " << H
                            << " mesh orders with their sidebands), got " << options.time_samples);
   s->sampler = std::make_unique<internal::HbOutputSampler>(
-      model, s->kmax, internal::ChooseTimeSamples(s->kmax, options.time_samples));
+      model, s->kmax, internal::ChooseTimeSamples(s->kmax, options.time_samples, s->q));
   if (!undamped.checked) FindUndampedModes(*s);
   HbSetup& ref = *s;
   setups.emplace(H, std::move(s));

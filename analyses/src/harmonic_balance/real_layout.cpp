@@ -114,11 +114,13 @@ std::int64_t OperatorPeriodMeshes(const SystemModel& model) {
   return p;
 }
 
-int ChooseTimeSamples(int harmonics, int requested) {
+int ChooseTimeSamples(int highest, int requested, std::int64_t q) {
   if (requested > 0) return requested;
-  int s = 256;
-  while (s < 8 * (harmonics + 1)) s *= 2;
-  return s;
+  const std::int64_t target =
+      std::max<std::int64_t>(256, 8 * (static_cast<std::int64_t>(highest) + 1));
+  std::int64_t s = std::max<std::int64_t>(q, 1);
+  while (s < target) s *= 2;
+  return static_cast<int>(s);
 }
 
 }  // namespace geardyn::internal

@@ -78,8 +78,33 @@ Coefficient MeshValueCoefficient(const SystemMesh& mesh, std::int64_t core_perio
       std::max<std::int64_t>(kMinSamplesPerMeshPeriod, (wanted + core_period - 1) / core_period);
   const std::int64_t samples = per_mesh * core_period;
   MatrixX table(kNumValueChannels, samples);
+  const auto* linear = std::get_if<LinearMeshCore>(&mesh.core);
+  if (linear == nullptr || PeriodMeshes(linear->stiffness()) == core_period) {
+    for (std::int64_t s = 0; s < samples; ++s) {
+      eval(period * static_cast<double>(s) / static_cast<double>(samples), table.col(s));
+    }
+    return TableCoefficient(std::move(table), core_period);
+  }
+  // A linear core whose ε has a longer period than its stiffness (tooth errors): K2 and C2 repeat
+  // every `cycle` samples (a whole number per mesh), so they are evaluated over one stiffness
+  // period only and reused; only ε is evaluated at every sample (a Fourier stiffness of N terms
+  // otherwise costs N sin/cos per sample over the whole hunting period).
+  const std::int64_t cycle = per_mesh * PeriodMeshes(linear->stiffness());
+  std::vector<Matrix2> k2(static_cast<size_t>(cycle)), c2(static_cast<size_t>(cycle));
+  for (std::int64_t s = 0; s < cycle; ++s) {
+    const double theta = period * static_cast<double>(s) / static_cast<double>(samples);
+    k2[static_cast<size_t>(s)] = EvalStiffnessCore(*linear, theta);
+    c2[static_cast<size_t>(s)] = EvalDampingCore(*linear, theta, mesh.damping_coefficient);
+  }
+  internal::MeshCoreValues v;
   for (std::int64_t s = 0; s < samples; ++s) {
-    eval(period * static_cast<double>(s) / static_cast<double>(samples), table.col(s));
+    const auto j = static_cast<size_t>(s % cycle);
+    v.stiffness = k2[j];
+    v.damping = c2[j];
+    // K2 ε (for the mean-LTI level K2 is the constant K̄2: EvalTransmissionErrorLoad's rule).
+    v.load = k2[j] * EvalTransmissionError(
+                         *linear, period * static_cast<double>(s) / static_cast<double>(samples));
+    PackValues(v, table.col(s));
   }
   return TableCoefficient(std::move(table), core_period);
 }

@@ -118,8 +118,9 @@ struct HbOptions {
   int min_harmonics = 8;
   /// Largest H of the tolerance search (≥ min_harmonics); reaching it gives kToleranceNotMet.
   int max_harmonics = 512;
-  /// S time samples per system period for the outputs; 0 = the smallest power of two ≥
-  /// max(256, 8(k_max+1)), k_max = highest_harmonic. Must exceed 2·k_max when given.
+  /// S time samples per system period for the outputs; 0 = the smallest q·2^j ≥ max(256,
+  /// 8(k_max+1)), k_max = highest_harmonic, q = P/P_K (a power of two for error-free pairs).
+  /// Must exceed 2·k_max when given.
   int time_samples = 0;
   /// Compute mesh forces and element forces (DTE always).
   bool compute_forces = true;
