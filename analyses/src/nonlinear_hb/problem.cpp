@@ -57,8 +57,8 @@ bool NhbOptions::IsValid(std::string* why) const {
       << samples_per_harmonic;
   else if (samples_per_harmonic > kMaxSamplesPerHarmonic)
     s << "samples_per_harmonic: must be ≤ " << kMaxSamplesPerHarmonic << ", got "
-      << samples_per_harmonic << " (an FFT of " << 2.0 * samples_per_harmonic
-      << "·H samples per residual; the AFT error is past round-off long before)";
+      << samples_per_harmonic << " (an FFT of " << samples_per_harmonic
+      << "·H samples per residual; the AFT error is at round-off long before)";
   else if (!(newton_tolerance > 0))
     s << "newton_tolerance: must be > 0, got " << newton_tolerance;
   else if (!(stability_margin >= 0) || !std::isfinite(stability_margin))

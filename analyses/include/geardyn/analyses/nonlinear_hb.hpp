@@ -158,9 +158,10 @@ struct NhbOptions {
   /// AFT oversampling: S = max(64, this·H), even (exact integration: S = max(64, 4H)); in
   /// [4, kMaxSamplesPerHarmonic].
   int samples_per_harmonic = 16;
-  /// Upper bound of samples_per_harmonic: the AFT error of a kink falls as S⁻² (S⁻³ with the
-  /// switch correction), so 1024 samples per harmonic are past double precision's use.
-  static constexpr int kMaxSamplesPerHarmonic = 1024;
+  /// Upper bound of samples_per_harmonic: S = 65536·H samples per residual are ≥ 0.5 MB per
+  /// coordinate and harmonic, and the AFT error of a kink (∝ S⁻², S⁻³ with the switch
+  /// correction) is at round-off long before (the dense-AFT references in the tests use ≤ 32768).
+  static constexpr int kMaxSamplesPerHarmonic = 65536;
   /// Upper bound of monodromy_steps: each step is a 2N × 2N Magnus exponential per point, and
   /// 10⁵ steps per period resolve any switch to 10⁻⁵ of the period.
   static constexpr int kMaxMonodromySteps = 100000;
@@ -225,9 +226,6 @@ struct NhbContinuationOptions {
   double min_step = 1e-6;            ///< Smaller step after failures → stop, kNotConverged.
   double max_step = 0.05;            ///< Largest arclength step.
   int max_points = 20000;            ///< Hard limit on points, in [2, kMaxPoints].
-  /// Upper bound of max_points: every point keeps its harmonics (N·(2H+1) values) and its
-  /// multipliers; 2·10⁶ points of a 24-harmonic, 12-DOF curve are already ≈ 10 GB.
-  static constexpr int kMaxPoints = 2000000;
   int max_corrector_iterations = 8;  ///< Corrector Newton iterations before a step is cut.
   double max_tangent_angle = 0.15;   ///< Largest angle between successive tangents [rad].
   /// Scaling of the arclength: s² = ‖Δx‖²/x_scale² + ΔΩ²/omega_scale²; 0 → automatic
@@ -237,6 +235,9 @@ struct NhbContinuationOptions {
   /// Called after every traced point with (points so far, its Ω); empty: none. Never called
   /// concurrently; it must not throw.
   std::function<void(int points, double omega)> progress;
+  /// Upper bound of max_points: every point keeps its harmonics (N·(2H+1) values) and its
+  /// multipliers; 2·10⁶ points of a 24-harmonic, 12-DOF curve are already ≈ 10 GB.
+  static constexpr int kMaxPoints = 2000000;
   bool IsValid(std::string* why) const;
 };
 
