@@ -63,10 +63,6 @@ struct StateSystem {
 /// @brief Builds the StateSystem (validates the system; throws InvalidInput).
 StateSystem MakeStateSystem(const PeriodicSecondOrderSystem& system, bool deflate_rigid);
 
-/// @brief P_K [-]: the lcm of the cores' stiffness periods (K(θ), C(θ)); divides the model's
-/// period_meshes(), which also counts the transmission error's hunting period
-/// (operator_period.cpp).
-std::int64_t OperatorPeriodMeshes(const SystemModel& model);
 /// @brief The step structure of K and C over one operator period 2π·P_K (CollectSystemSteps
 /// truncated to [0, 2π·P_K)).
 SystemSteps OperatorSteps(const SystemModel& model, std::int64_t operator_period);

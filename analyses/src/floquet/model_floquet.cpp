@@ -340,7 +340,7 @@ FloquetResult ComputeFloquet(const SystemModel& model, const FloquetOptions& opt
   }
   if (result.marginal) result.undamped_modes = internal::UndampedModes(model);
   for (const std::string& w : warnings) result.summary.warnings.push_back(w);
-  result.period_meshes = internal::OperatorPeriodMeshes(model);
+  result.period_meshes = OperatorPeriodMeshes(model);
   result.period_s = static_cast<double>(result.period_meshes) / options.mesh_frequency_hz;
   if (result.period_meshes != model.period_meshes()) {
     result.summary.counters["load_period_meshes"] = model.period_meshes();

@@ -1,4 +1,4 @@
-// The period of the homogeneous Floquet problem: K(θ) and C(θ) only (issue 12). Tooth errors
+// One operator period of the homogeneous Floquet problem (P_K = OperatorPeriodMeshes, issue 12). Tooth errors
 // give ε a hunting period of up to lcm(z1, z2) mesh cycles (SystemModel::period_meshes()), but ε
 // enters only the load f(θ) = Gᵀ K2 ε: it forces the system and does not excite it
 // parametrically. Over the model's period the monodromy would be Φ_K^(P/P_K) (multipliers raised
@@ -13,27 +13,6 @@
 #include "geardyn/common/overloaded.hpp"
 
 namespace geardyn::internal {
-
-std::int64_t OperatorPeriodMeshes(const SystemModel& model) {
-  std::int64_t p = 1;
-  for (const SystemMesh& mesh : model.meshes()) {
-    const std::int64_t own = std::visit(
-        Overloaded{
-            // The mean-LTI stiffness is constant by construction (its ε may vary).
-            [](const LinearMeshCore& c) {
-              return c.is_mean_lti() ? std::int64_t{1} : PeriodMeshes(c.stiffness());
-            },
-            // Linear analyses use the all-loaded linearization: stiffness only.
-            [](const SliceMeshCore& c) { return PeriodMeshes(c.stiffness()); },
-            [](const std::shared_ptr<const NonlinearMeshCore>&) { return std::int64_t{1}; },
-        },
-        mesh.core);
-    p = std::lcm(p, own);
-  }
-  // Every core period divides the model's, so P_K does too.
-  GEARDYN_DEMAND(model.period_meshes() % p == 0);
-  return p;
-}
 
 SystemSteps OperatorSteps(const SystemModel& model, std::int64_t operator_period) {
   SystemSteps all = CollectSystemSteps(model);

@@ -67,12 +67,6 @@ double BalanceMeanLoad(const RigidModes& rigid, VectorXc* f0);
 /// (slice cores linearized).
 std::vector<std::string> CheckLinearHbModel(const SystemModel& model);
 
-/// @brief P_K: the period of K(θ) and C(θ) alone [mesh cycles] — the lcm over the meshes of the
-/// stiffness channels' period for a LinearMeshCore (ε enters the load K2 ε only), of the whole
-/// core's for the others. It divides SystemModel::period_meshes(); the two differ when only the
-/// forcing repeats over the hunting period (pitch errors, runout).
-std::int64_t OperatorPeriodMeshes(const SystemModel& model);
-
 /// @brief `requested` when > 0, else the smallest q·2^j ≥ max(256, 8(k_max+1)): a power of two
 /// when q = 1, and a whole number of samples per operator period otherwise (the sampler then
 /// evaluates K2, C2 over one operator period only).

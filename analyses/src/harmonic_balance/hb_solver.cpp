@@ -156,9 +156,7 @@ struct HarmonicBalanceSolver::Impl {
   UndampedModes undamped;
   std::map<int, std::unique_ptr<HbSetup>> setups;
 
-  std::int64_t ClassModulus() const {
-    return model.period_meshes() / internal::OperatorPeriodMeshes(model);
-  }
+  std::int64_t ClassModulus() const { return model.period_meshes() / OperatorPeriodMeshes(model); }
   double EstimateBytes(int H) const;
   HbSetup& Setup(int H);
   void FindUndampedModes(const HbSetup& s);

@@ -104,16 +104,6 @@ std::vector<std::string> CheckLinearHbModel(const SystemModel& model) {
   return warnings;
 }
 
-std::int64_t OperatorPeriodMeshes(const SystemModel& model) {
-  std::int64_t p = 1;
-  for (const SystemMesh& mesh : model.meshes()) {
-    const auto* linear = std::get_if<LinearMeshCore>(&mesh.core);
-    p = std::lcm(p,
-                 linear != nullptr ? PeriodMeshes(linear->stiffness()) : PeriodMeshes(mesh.core));
-  }
-  return p;
-}
-
 int ChooseTimeSamples(int highest, int requested, std::int64_t q) {
   if (requested > 0) return requested;
   const std::int64_t target =

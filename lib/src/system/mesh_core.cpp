@@ -409,4 +409,16 @@ std::int64_t PeriodMeshes(const MeshCore& core) {
                     core);
 }
 
+std::int64_t OperatorPeriodMeshes(const MeshCore& core) {
+  return std::visit(
+      Overloaded{
+          [](const LinearMeshCore& c) {
+            return c.is_mean_lti() ? std::int64_t{1} : PeriodMeshes(c.stiffness());
+          },
+          [](const SliceMeshCore& c) { return PeriodMeshes(c.stiffness()); },
+          [&core](const std::shared_ptr<const NonlinearMeshCore>&) { return PeriodMeshes(core); },
+      },
+      core);
+}
+
 }  // namespace geardyn

@@ -304,4 +304,12 @@ SystemModel SystemModel::Restrict(const std::vector<int>& dofs) const {
   return SystemModel(std::move(out));
 }
 
+std::int64_t OperatorPeriodMeshes(const SystemModel& model) {
+  std::int64_t p = 1;
+  for (const SystemMesh& mesh : model.meshes()) p = std::lcm(p, OperatorPeriodMeshes(mesh.core));
+  // Every core's operator period divides its period, so P_K divides the model's P.
+  GEARDYN_DEMAND(model.period_meshes() % p == 0);
+  return p;
+}
+
 }  // namespace geardyn

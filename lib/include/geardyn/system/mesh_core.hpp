@@ -415,4 +415,12 @@ TimeDependence Classify(const MeshCore& core);
 /// @throws InvalidInput for a null NonlinearMeshCore pointer.
 std::int64_t PeriodMeshes(const MeshCore& core);
 
+/// @brief P_K of any core: the period of its operator (K2, C2) only, which divides PeriodMeshes.
+/// ε (and a slice core's separations, in its all-loaded linearization) enter the load, not the
+/// operator: tooth errors give them a hunting period that forces the system without exciting it
+/// parametrically. A linear core's stiffness channels' period (1 for a mean-LTI core); a slice
+/// core's stiffness period; a NonlinearMeshCore's own period (nothing finer is known).
+/// @throws InvalidInput for a null NonlinearMeshCore pointer.
+std::int64_t OperatorPeriodMeshes(const MeshCore& core);
+
 }  // namespace geardyn

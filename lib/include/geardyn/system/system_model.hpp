@@ -193,4 +193,9 @@ class SystemModel {
   std::shared_ptr<const Data> data_;
 };
 
+/// @brief P_K [-]: the lcm of the cores' OperatorPeriodMeshes — the period of K(θ) and C(θ) in
+/// mesh cycles, which the homogeneous (Floquet) problem and the harmonic coupling of the linear
+/// HB use. It divides period_meshes(), which also counts the hunting period of ε (issue 12).
+std::int64_t OperatorPeriodMeshes(const SystemModel& model);
+
 }  // namespace geardyn
