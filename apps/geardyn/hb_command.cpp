@@ -9,7 +9,11 @@
 //   near resonances and folds. One frequency: a single periodic solution. Files nhb.json,
 //   nhb.csv, nhb_rms_dte.svg (nhb_report.hpp).
 // * Linear (--linear, or no slice mesh): SweepHarmonicBalance on the listed frequencies (slice
-//   meshes linearized with every slice loaded). Files hb.json, hb.csv, hb_rms_dte.svg.
+//   meshes linearized with every slice loaded). Files hb.json, hb.csv, hb_rms_dte.svg. Unless
+//   --stability none, every point carries the Floquet verdict of the homogeneous system at its
+//   mesh frequency (ComputeHbStability, hb_stability.hpp): unstable points are flagged, the
+//   unstable ranges are warnings, and an undetermined verdict gives exit code 1
+//   (docs/design.md "Linear HB stability").
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -18,6 +22,7 @@
 #include <numbers>
 
 #include "geardyn/analyses/harmonic_balance.hpp"
+#include "geardyn/analyses/hb_stability.hpp"
 #include "geardyn/analyses/system_nonlinear_hb.hpp"
 #include "geardyn/cli.hpp"
 #include "geardyn/command.hpp"
@@ -166,15 +171,29 @@ int RunLinearHb(const HbCommandOptions& opts, const Scene& scene, const SceneSys
     };
   }
   const HbSweepResult sweep = SweepHarmonicBalance(built.model, frequencies, options, progress);
-  const nlohmann::json report = MakeHbReport(scene.source, opts.settings, sweep, built.warnings);
+  // The Floquet verdict of every point (--stability none: skipped). monodromy → kAuto (exact
+  // steps for piecewise-constant K, C; Magnus for smooth ones), hill → Hill's method; the
+  // tolerance is ComputeFloquet's default, so the verdict is the one `geardyn floquet` gives.
+  std::unique_ptr<HbStabilitySweep> stability;
+  if (opts.stability != "none") {
+    FloquetOptions floquet;
+    floquet.method = opts.stability == "hill" ? FloquetMethod::kHill : FloquetMethod::kAuto;
+    if (opts.settings.progress) err << "geardyn hb: Floquet verdicts of the points\n";
+    stability =
+        std::make_unique<HbStabilitySweep>(ComputeHbStability(built.model, frequencies, floquet));
+  }
+  const nlohmann::json report =
+      MakeHbReport(scene.source, opts.settings, sweep, built.warnings, stability.get());
   const std::string json_text = report.dump(2) + "\n";
   Emit(opts, json_text, FormatHbText(report),
        {{"hb.json", json_text},
-        {"hb.csv", FormatHbCsv(sweep)},
-        {"hb_rms_dte.svg",
-         RenderHbPlot(sweep, "RMS DTE (linear harmonic balance): " + scene.source)}},
+        {"hb.csv", FormatHbCsv(sweep, stability.get())},
+        {"hb_rms_dte.svg", RenderHbPlot(sweep, "RMS DTE (linear harmonic balance): " + scene.source,
+                                        stability.get())}},
        out);
-  return sweep.summary.ok() ? int{kExitOk} : int{kExitNumericalIssue};
+  // An unstable point is a result, not a numerical problem; an undetermined verdict is.
+  const bool stability_ok = stability == nullptr || stability->summary.ok();
+  return sweep.summary.ok() && stability_ok ? int{kExitOk} : int{kExitNumericalIssue};
 }
 
 int RunHb(const HbCommandOptions& opts, std::ostream& out, std::ostream& err) {
@@ -229,8 +248,11 @@ Command AddHbCommand(CLI::App& app) {
                 "nonlinear model with contact loss and back-flank contact (the default when a "
                 "mesh has model = \"slices\"; an error without one)");
   cmd->add_option("--stability", opts->stability,
-                  "nonlinear: stability of every point: monodromy (Floquet multipliers, "
-                  "default), hill (uncondensed problems only, else monodromy) or none")
+                  "stability of every point. Nonlinear: monodromy (Floquet multipliers of the "
+                  "linearization, default), hill (uncondensed problems only, else monodromy) or "
+                  "none. Linear: the Floquet verdict of the homogeneous LTV system at each mesh "
+                  "frequency (parametric instability), monodromy = the automatic Floquet method "
+                  "(default), hill = Hill's method, none = skipped")
       ->check(CLI::IsMember({"none", "monodromy", "hill"}));
   cmd->add_option("--monodromy-steps", opts->monodromy_steps,
                   "nonlinear: Magnus steps of the monodromy per period (default max(64, 4H)); "

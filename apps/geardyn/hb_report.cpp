@@ -33,6 +33,28 @@ std::string Num(double v) {
   return buffer;
 }
 
+// The stability of point i as JSON (null without a stability pass).
+json PointStability(const HbStabilitySweep* stability, std::size_t i) {
+  if (stability == nullptr || i >= stability->points.size()) return nullptr;
+  const HbPointStability& s = stability->points[i];
+  json j = {{"verdict", ToString(s.verdict)},     {"max_abs_multiplier", s.max_abs_multiplier},
+            {"error_estimate", s.error_estimate}, {"marginal", s.marginal},
+            {"method", ToString(s.method_used)},  {"status", StatusName(s.status)}};
+  if (!s.message.empty()) j["message"] = s.message;
+  return j;
+}
+
+// "unstable (parametric, max|λ| = 1.069)", "stable", "undetermined" or "" (no stability).
+std::string StabilityText(const json& stability) {
+  if (stability.is_null()) return "";
+  const std::string verdict = stability["verdict"].get<std::string>();
+  if (verdict != "unstable") return verdict;
+  char text[64];
+  std::snprintf(text, sizeof(text), "unstable (parametric, max|λ| = %.4g)",
+                stability["max_abs_multiplier"].get<double>());
+  return text;
+}
+
 }  // namespace
 
 std::vector<double> ParseMeshFrequencies(const std::string& spec, double nominal_hz) {
@@ -88,18 +110,39 @@ HbOptions MakeHbOptions(const HbSettings& settings) {
 }
 
 json MakeHbReport(const std::string& scene_source, const HbSettings& settings,
-                  const HbSweepResult& sweep, const std::vector<std::string>& scene_warnings) {
+                  const HbSweepResult& sweep, const std::vector<std::string>& scene_warnings,
+                  const HbStabilitySweep* stability) {
   json report;
   report["scene"] = scene_source;
   report["mode"] = "linear";
   report["harmonics"] = settings.harmonics;
   // The tolerance chooses H; with a fixed H it is not used (and not echoed).
   report["tolerance"] = settings.harmonics > 0 ? json(nullptr) : json(settings.tolerance);
-  report["status"] = StatusName(sweep.summary.status);
-  report["message"] = sweep.summary.message;
+  // An undetermined verdict is a numerical problem of the run (docs/design.md "Linear HB
+  // stability"); the HB's own failure, when any, is reported first.
+  const bool stability_failed =
+      stability != nullptr && sweep.summary.ok() && !stability->summary.ok();
+  report["status"] =
+      StatusName(stability_failed ? stability->summary.status : sweep.summary.status);
+  report["message"] = stability_failed ? stability->summary.message : sweep.summary.message;
+  report["stability"] = stability != nullptr ? "floquet" : "none";
   json warnings = json::array();
   for (const std::string& w : scene_warnings) warnings.push_back("scene: " + w);
   for (const std::string& w : sweep.summary.warnings) warnings.push_back(w);
+  json ranges = json::array();
+  if (stability != nullptr) {
+    for (const std::string& w : stability->summary.warnings) warnings.push_back(w);
+    if (!sweep.summary.ok() && !stability->summary.ok()) {
+      warnings.push_back(stability->summary.message);
+    }
+    for (const HbUnstableRange& r : stability->unstable_ranges) {
+      ranges.push_back({{"lo_hz", r.lo_hz},
+                        {"hi_hz", r.hi_hz},
+                        {"points", r.points},
+                        {"max_abs_multiplier", r.max_abs_multiplier}});
+    }
+  }
+  report["unstable_ranges"] = ranges;
   report["warnings"] = warnings;
   report["meshes"] = json::array();
   report["elements"] = json::array();
@@ -110,7 +153,8 @@ json MakeHbReport(const std::string& scene_source, const HbSettings& settings,
     }
   }
   json points = json::array();
-  for (const HbResult& r : sweep.points) {
+  for (std::size_t i = 0; i < sweep.points.size(); ++i) {
+    const HbResult& r = sweep.points[i];
     json p;
     p["mesh_frequency_hz"] = r.mesh_frequency_hz;
     p["harmonics"] = r.harmonics;
@@ -142,16 +186,19 @@ json MakeHbReport(const std::string& scene_source, const HbSettings& settings,
                           {"rms_force", ToStd(e.rms_force)}});
     }
     p["elements"] = elements;
+    p["stability"] = PointStability(stability, i);
     points.push_back(p);
   }
   report["points"] = points;
   report["wall_time_s"] = sweep.summary.wall_time_s;
+  report["stability_wall_time_s"] = stability != nullptr ? stability->summary.wall_time_s : 0.0;
   return report;
 }
 
-std::string FormatHbCsv(const HbSweepResult& sweep) {
+std::string FormatHbCsv(const HbSweepResult& sweep, const HbStabilitySweep* stability) {
   std::ostringstream os;
   os << "mesh_frequency_hz,harmonics,error_estimate,status";
+  if (stability != nullptr) os << ",stability,max_abs_multiplier";
   if (!sweep.points.empty()) {
     for (const HbMeshOutput& m : sweep.points.front().meshes) {
       os << "," << m.name << ":rms_dte_m," << m.name << ":peak_to_peak_dte_m," << m.name
@@ -161,9 +208,14 @@ std::string FormatHbCsv(const HbSweepResult& sweep) {
     }
   }
   os << "\n";
-  for (const HbResult& r : sweep.points) {
+  for (std::size_t i = 0; i < sweep.points.size(); ++i) {
+    const HbResult& r = sweep.points[i];
     os << Num(r.mesh_frequency_hz) << "," << r.harmonics << "," << Num(r.summary.error_estimate)
        << "," << StatusName(r.summary.status);
+    if (stability != nullptr) {
+      const HbPointStability& s = stability->points[i];
+      os << "," << ToString(s.verdict) << "," << Num(s.max_abs_multiplier);
+    }
     for (const HbMeshOutput& m : r.meshes) {
       os << "," << Num(m.rms_dte) << "," << Num(m.peak_to_peak_dte) << "," << Num(m.mean_dte);
       for (int h = 1; h <= kCsvHarmonics; ++h) {
@@ -189,16 +241,23 @@ std::string FormatHbText(const json& report) {
   const auto& points = report["points"];
   const std::size_t stride = points.size() > 40 ? points.size() / 20 : 1;
   char line[256];
-  std::snprintf(line, sizeof(line), "%12s %4s  %-24s %12s %12s %12s\n", "f_mesh [Hz]", "H", "mesh",
-                "RMS DTE [um]", "p-p [um]", "RMS F [N]");
+  const bool with_stability = report.value("stability", "none") != "none";
+  std::snprintf(line, sizeof(line), "%12s %4s  %-24s %12s %12s %12s%s\n", "f_mesh [Hz]", "H",
+                "mesh", "RMS DTE [um]", "p-p [um]", "RMS F [N]",
+                with_stability ? "  stability" : "");
   os << line;
-  for (std::size_t i = 0; i < points.size(); i += stride) {
+  for (std::size_t i = 0; i < points.size(); ++i) {
     const auto& p = points[i];
+    const std::string stability = StabilityText(p.value("stability", json(nullptr)));
+    // Every unstable or undetermined point is listed, whatever the stride.
+    const bool flagged = !stability.empty() && stability != "stable";
+    if (i % stride != 0 && !flagged) continue;
     for (const auto& m : p["meshes"]) {
-      std::snprintf(line, sizeof(line), "%12.2f %4d  %-24s %12.5g %12.5g %12.5g%s\n",
+      std::snprintf(line, sizeof(line), "%12.2f %4d  %-24s %12.5g %12.5g %12.5g%s%s%s\n",
                     p["mesh_frequency_hz"].get<double>(), p["harmonics"].get<int>(),
                     m["name"].get<std::string>().c_str(), 1e6 * m["rms_dte_m"].get<double>(),
                     1e6 * m["peak_to_peak_dte_m"].get<double>(), m["rms_force_n"].get<double>(),
+                    stability.empty() ? "" : "  ", stability.c_str(),
                     p["status"].get<std::string>() == "success" ? "" : "  (!)");
       os << line;
     }
@@ -210,22 +269,65 @@ std::string FormatHbText(const json& report) {
   return os.str();
 }
 
-std::string RenderHbPlot(const HbSweepResult& sweep, const std::string& title) {
+std::string RenderHbPlot(const HbSweepResult& sweep, const std::string& title,
+                         const HbStabilitySweep* stability) {
   PlotSpec spec;
   spec.title = title;
   spec.x_label = "mesh frequency [Hz]";
   PlotPanel panel;
   panel.y_label = "RMS DTE [um]";
   const std::size_t meshes = sweep.points.empty() ? 0 : sweep.points.front().meshes.size();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
   for (std::size_t k = 0; k < meshes; ++k) {
     PlotSeries series;
     series.label = sweep.points.front().meshes[k].name;
-    for (const HbResult& r : sweep.points) {
-      series.x.push_back(r.mesh_frequency_hz);
-      series.y.push_back(r.summary.ok() ? 1e6 * r.meshes[k].rms_dte
-                                        : std::numeric_limits<double>::quiet_NaN());
+    if (stability == nullptr) {
+      for (const HbResult& r : sweep.points) {
+        series.x.push_back(r.mesh_frequency_hz);
+        series.y.push_back(r.summary.ok() ? 1e6 * r.meshes[k].rms_dte : nan);
+      }
+      panel.series.push_back(series);
+      continue;
+    }
+    // Solid over stable points; each run of unstable points one dashed series in the same
+    // colour, from its stable neighbour before to the one after so that the curve stays
+    // connected (as the nonlinear plot). Failed points and undetermined verdicts break it.
+    series.colour = PlotColour(k);
+    const std::size_t count = sweep.points.size();
+    std::vector<double> y(count, nan);
+    std::vector<bool> unstable(count, false);
+    for (std::size_t i = 0; i < count; ++i) {
+      const HbResult& r = sweep.points[i];
+      const FloquetVerdict v = stability->points[i].verdict;
+      if (!r.summary.ok() || v == FloquetVerdict::kUndetermined) continue;
+      y[i] = 1e6 * r.meshes[k].rms_dte;
+      unstable[i] = v == FloquetVerdict::kUnstable;
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+      series.x.push_back(sweep.points[i].mesh_frequency_hz);
+      series.y.push_back(unstable[i] ? nan : y[i]);
     }
     panel.series.push_back(series);
+    bool labelled = k > 0;
+    for (std::size_t i = 0; i < count;) {
+      if (!unstable[i]) {
+        ++i;
+        continue;
+      }
+      PlotSeries run;
+      run.colour = series.colour;
+      run.dashed = true;
+      if (!labelled) run.label = "parametrically unstable (dashed)";
+      labelled = true;
+      const std::size_t first = i > 0 ? i - 1 : i;  // a NaN neighbour draws nothing
+      while (i < count && unstable[i]) ++i;
+      const std::size_t last = i < count ? i : count - 1;
+      for (std::size_t m = first; m <= last; ++m) {
+        run.x.push_back(sweep.points[m].mesh_frequency_hz);
+        run.y.push_back(y[m]);
+      }
+      panel.series.push_back(run);
+    }
   }
   spec.panels.push_back(panel);
   return RenderSvg(spec);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "geardyn/analyses/harmonic_balance.hpp"
+#include "geardyn/analyses/hb_stability.hpp"
 
 namespace geardyn::app {
 
@@ -40,21 +41,32 @@ HbOptions MakeHbOptions(const HbSettings& settings);
 /// (names), "elements" (names), "points": [{mesh_frequency_hz, harmonics, method,
 /// error_estimate, status, meshes: [{name, rms_dte_m, peak_to_peak_dte_m, mean_dte_m,
 /// dte_amplitudes_m, mean_force_n, rms_force_n, peak_to_peak_force_n}], elements: [{name,
-/// mean_force, rms_force}]}], "wall_time_s".
+/// mean_force, rms_force}], stability}], "stability" ("floquet" or "none"), "unstable_ranges"
+/// ([{lo_hz, hi_hz, points, max_abs_multiplier}]), "wall_time_s", "stability_wall_time_s".
+/// With `stability` (one verdict per point, hb_stability.hpp) each point's "stability" is
+/// {verdict, max_abs_multiplier, error_estimate, marginal, method, status[, message]} (null
+/// without), its warnings follow the sweep's, and "status"/"message" are the stability's when
+/// the sweep succeeded but a verdict is undetermined.
 nlohmann::json MakeHbReport(const std::string& scene_source, const HbSettings& settings,
                             const HbSweepResult& sweep,
-                            const std::vector<std::string>& scene_warnings);
+                            const std::vector<std::string>& scene_warnings,
+                            const HbStabilitySweep* stability = nullptr);
 
 /// @brief One row per mesh frequency: mesh_frequency_hz, harmonics, error_estimate, status, then
 /// per mesh "<mesh>:rms_dte_m", ":peak_to_peak_dte_m", ":mean_dte_m", ":a1_m" … ":a5_m",
-/// ":rms_force_n" (amplitudes of system harmonics 1 … 5; empty beyond H).
-std::string FormatHbCsv(const HbSweepResult& sweep);
+/// ":rms_force_n" (amplitudes of system harmonics 1 … 5; empty beyond H). With `stability`,
+/// two more columns after status: "stability" (stable / unstable / undetermined) and
+/// "max_abs_multiplier".
+std::string FormatHbCsv(const HbSweepResult& sweep, const HbStabilitySweep* stability = nullptr);
 
-/// @brief A short text table (every ~20th point for long sweeps) and the warnings.
+/// @brief A short text table (every ~20th point for long sweeps; unstable and undetermined
+/// points are always listed, with "unstable (parametric, max|λ| = x)") and the warnings.
 std::string FormatHbText(const nlohmann::json& report);
 
 /// @brief SVG: RMS DTE [µm] vs mesh frequency [Hz], one curve per mesh (points whose status is
-/// not success are left out).
-std::string RenderHbPlot(const HbSweepResult& sweep, const std::string& title);
+/// not success are left out); with `stability`, dashed over the runs of parametrically unstable
+/// points (as the nonlinear plot) and broken at undetermined ones.
+std::string RenderHbPlot(const HbSweepResult& sweep, const std::string& title,
+                         const HbStabilitySweep* stability = nullptr);
 
 }  // namespace geardyn::app

@@ -44,6 +44,8 @@ struct Range {
 
 }  // namespace
 
+const char* PlotColour(std::size_t index) { return kColours[index % kColours.size()]; }
+
 std::string RenderSvg(const PlotSpec& spec) {
   const int n = static_cast<int>(spec.panels.size());
   const int height = kTop + n * spec.panel_height + std::max(0, n - 1) * kGap + kBottom;

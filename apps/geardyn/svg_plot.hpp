@@ -3,6 +3,7 @@
 /// panels sharing one x axis, several series per panel, solid or dashed, with "nice" ticks.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -44,5 +45,9 @@ struct PlotSpec {
 /// @brief Renders the figure as a standalone SVG document.
 /// @throws InvalidInput if a series has x and y of different lengths.
 std::string RenderSvg(const PlotSpec& spec);
+
+/// The palette colour RenderSvg gives series `index` of a panel when its colour is empty (to
+/// draw two series, e.g. stable solid and unstable dashed, in one colour).
+const char* PlotColour(std::size_t index);
 
 }  // namespace geardyn::app
