@@ -37,6 +37,11 @@ namespace geardyn::app {
 namespace {
 
 constexpr int kNonlinearDefaultHarmonics = 24;
+// Error target of the linear path's Floquet verdicts [-] (on the multipliers): a verdict needs
+// |λ| − 1 resolved, not 1e-10 (`geardyn floquet`'s default); a growth below 1e-6 per period
+// e-folds over 10⁶ periods. Exact steps (piecewise-constant K) are round-off accurate anyway;
+// Magnus (smooth K) needs 3–8× fewer steps than at 1e-10 (docs/benchmarks.md).
+constexpr double kLinearStabilityTolerance = 1e-6;
 // Minimum time between two --progress lines of the nonlinear trace [s].
 constexpr double kProgressInterval = 0.5;
 
@@ -172,12 +177,12 @@ int RunLinearHb(const HbCommandOptions& opts, const Scene& scene, const SceneSys
   }
   const HbSweepResult sweep = SweepHarmonicBalance(built.model, frequencies, options, progress);
   // The Floquet verdict of every point (--stability none: skipped). monodromy → kAuto (exact
-  // steps for piecewise-constant K, C; Magnus for smooth ones), hill → Hill's method; the
-  // tolerance is ComputeFloquet's default, so the verdict is the one `geardyn floquet` gives.
+  // steps for piecewise-constant K, C; Magnus for smooth ones), hill → Hill's method.
   std::unique_ptr<HbStabilitySweep> stability;
   if (opts.stability != "none") {
     FloquetOptions floquet;
     floquet.method = opts.stability == "hill" ? FloquetMethod::kHill : FloquetMethod::kAuto;
+    floquet.tolerance = kLinearStabilityTolerance;
     if (opts.settings.progress) err << "geardyn hb: Floquet verdicts of the points\n";
     stability =
         std::make_unique<HbStabilitySweep>(ComputeHbStability(built.model, frequencies, floquet));
