@@ -1,8 +1,8 @@
-// One operator period of the homogeneous Floquet problem (P_K = OperatorPeriodMeshes, issue 12). Tooth errors
-// give ε a hunting period of up to lcm(z1, z2) mesh cycles (SystemModel::period_meshes()), but ε
-// enters only the load f(θ) = Gᵀ K2 ε: it forces the system and does not excite it
-// parametrically. Over the model's period the monodromy would be Φ_K^(P/P_K) (multipliers raised
-// to that power, and P/P_K times the work).
+// One operator period of the homogeneous Floquet problem (P_K = OperatorPeriodMeshes, issue 12).
+// Tooth errors give ε a hunting period of up to lcm(z1, z2) mesh cycles
+// (SystemModel::period_meshes()), but ε enters only the load f(θ) = Gᵀ K2 ε: it forces the system
+// and does not excite it parametrically. Over the model's period the monodromy would be Φ_K^(P/P_K)
+// (multipliers raised to that power, and P/P_K times the work).
 #include <cmath>
 #include <numbers>
 #include <numeric>

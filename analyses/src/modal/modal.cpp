@@ -214,9 +214,8 @@ ModalResult ComputeModes(const SystemModel& model, const ModalOptions& options) 
   // ratios, and with damping the classification of a large system (its test runs on the modes)
   // and the damped modes above damped_max_dofs (from the modal ratios).
   const bool damping_needs_vectors =
-      sys.has_damping &&
-      (options.compute_damping_ratios || n > kDenseDampingTestMaxDofs ||
-       (options.compute_damped && n > options.damped_max_dofs));
+      sys.has_damping && (options.compute_damping_ratios || n > kDenseDampingTestMaxDofs ||
+                          (options.compute_damped && n > options.damped_max_dofs));
   const bool need_vectors =
       options.compute_shapes || options.compute_energy_fractions || damping_needs_vectors;
 
