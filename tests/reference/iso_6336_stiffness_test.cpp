@@ -22,6 +22,7 @@
 #include "geardyn/common/units.hpp"
 #include "geardyn/models/gear/gear_geometry.hpp"
 #include "geardyn/models/gear/iso_stiffness.hpp"
+#include "support/published_stages.hpp"
 
 namespace geardyn {
 namespace {
@@ -71,23 +72,13 @@ TEST(Iso6336StiffnessReference, SolidBlanksIsoTr6336_30Example1) {
 // x 0.4800/0.6691, a 861 mm, tip diameters 380.747/1395.376 mm (with tip alteration), ISO 53
 // profile A. Webs of both blanks with b_s/b = 0.25 and s_R/m_n = 5, as the report prints.
 GearPairSpec NrelParallelStage() {
-  GearPairSpec s;
-  s.normal_module = 14.0 * kMm;
-  s.normal_pressure_angle = DegToRad(20.0);
-  s.helix_angle = DegToRad(10.0);
-  s.pinion_hand = HelixHand::kRight;
-  s.pinion.teeth = 24;
-  s.gear.teeth = 95;
-  s.pinion.profile_shift = 0.4800;
-  s.gear.profile_shift = 0.6691;
+  GearPairSpec s = test::NrelParallelStage();
   s.pinion.tip_diameter = 380.747 * kMm;
   s.gear.tip_diameter = 1395.376 * kMm;
   for (GearBlank* b : {&s.pinion, &s.gear}) {
-    b->face_width = 360.0 * kMm;
     b->web_thickness = 0.25 * 360.0 * kMm;
     b->rim_thickness = 5.0 * 14.0 * kMm;
   }
-  s.center_distance = 861.0 * kMm;
   return s;
 }
 

@@ -16,33 +16,17 @@
 #include "geardyn/common/units.hpp"
 #include "geardyn/models/gear/gear_geometry.hpp"
 #include "support/expect_throws.hpp"
+#include "support/published_stages.hpp"
 
 namespace geardyn {
 namespace {
+
+using test::NrelParallelStage;
 
 constexpr double kMm = 1e-3;
 constexpr double kShiftTolerance = 1e-4;  // the documented bound on x1 + x2 rounding
 // j_bn is a difference of O(m_n) thicknesses: round-off ~1e-15 m_n relative to 1e-4 m_n.
 constexpr double kRelTol = 1e-8;
-
-// NREL 5 MW reference gearbox, parallel stage (KISSsoft 03/2017 report "stage_03", repository
-// gfsReboucas/Drivetrain, file @NREL_5MW/stage_03.rtf): m_n 14 mm, α_n 20°, β 10°, z 24/95,
-// b 360 mm, x 0.4800/0.6691 (printed to 4 decimals), a = 861 mm (whole millimetres).
-GearPairSpec NrelParallelStage() {
-  GearPairSpec s;
-  s.normal_module = 14.0 * kMm;
-  s.normal_pressure_angle = DegToRad(20.0);
-  s.helix_angle = DegToRad(10.0);
-  s.pinion_hand = HelixHand::kRight;
-  s.pinion.teeth = 24;
-  s.gear.teeth = 95;
-  s.pinion.profile_shift = 0.4800;
-  s.gear.profile_shift = 0.6691;
-  s.pinion.face_width = 360.0 * kMm;
-  s.gear.face_width = 360.0 * kMm;
-  s.center_distance = 861.0 * kMm;
-  return s;
-}
 
 TEST(BacklashToleranceTest, PublishedStageWithRoundedShiftsIsAcceptedWithAWarning) {
   const GearPairGeometry g = CalcGearPairGeometry(NrelParallelStage());
