@@ -133,6 +133,9 @@ int RunFloquet(const FloquetCommandOptions& opts, std::ostream& out) {
   if (scene.meshes.empty()) throw InvalidInput(scene.source + ": the scene has no mesh");
   SceneSystemOptions system_options;
   system_options.analysis = "floquet";  // named if a mass is missing
+  // The homogeneous problem M q̈ + C q̇ + K(θ) q = 0 has the period of K and C only: ε is forcing
+  // (with coprime tooth counts its table would span the whole hunting period).
+  system_options.transmission_error = false;
   const SceneSystem built = BuildSceneSystem(scene, system_options);
   options.mesh_frequency_hz = scene.MeshFrequencyHz(scene.meshes[0]);
   if (!(options.mesh_frequency_hz > 0.0)) {

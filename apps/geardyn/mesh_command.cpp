@@ -53,11 +53,16 @@ int RunMesh(const MeshCommandOptions& opts, std::ostream& out) {
 Command AddMeshCommand(CLI::App& app) {
   auto opts = std::make_shared<MeshCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "mesh", "write K(θ), h(θ), μ(θ), ε(θ) of every mesh over one period (CSV, JSON, SVG)");
+      "mesh",
+      "write K(θ), h(θ), μ(θ), ε(θ) of every mesh over one period or --cycles (CSV, JSON, SVG)");
   AddSceneOptions(cmd, &opts->scene);
   cmd->add_option_function<double>(
       "--samples", [opts](const double& n) { opts->sampling.samples_per_mesh = n; },
       "samples per mesh cycle, 1 … 100000 (default: 360, fewer over long hunting periods)");
+  cmd->add_option_function<double>(
+      "--cycles", [opts](const double& n) { opts->sampling.cycles = n; },
+      "mesh cycles sampled from θ = 0 (default: the mesh's period, at most the first 12500 "
+      "cycles of a hunting period)");
   return {cmd, [opts](std::ostream& out) { return RunMesh(*opts, out); }};
 }
 

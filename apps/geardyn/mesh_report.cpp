@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <optional>
 #include <sstream>
+#include <string>
 #include <type_traits>
 #include <variant>
 
@@ -12,6 +14,7 @@
 #include "geardyn/models/mesh/contact_lines.hpp"
 #include "geardyn/models/mesh/stiffness_core.hpp"
 #include "geardyn/models/scene/mesh_model.hpp"
+#include "geardyn/models/scene/mesh_transmission_error.hpp"
 #include "geardyn/svg_plot.hpp"
 
 namespace geardyn::app {
@@ -23,10 +26,15 @@ constexpr int kReportedHarmonics = 10;
 constexpr int kDefaultSamplesPerMesh = 360;
 constexpr int kMinAutoSamplesPerMesh = 16;
 
-int SamplesPerMesh(const MeshSamplingOptions& options, std::int64_t period_meshes) {
+// The sampled window [mesh cycles]: --cycles, else the period up to kMaxAutoCycles.
+std::int64_t WindowCycles(const MeshSamplingOptions& options, std::int64_t period_meshes) {
+  if (options.cycles) return static_cast<std::int64_t>(*options.cycles);
+  return std::min<std::int64_t>(period_meshes, MeshSamplingOptions::kMaxAutoCycles);
+}
+
+int SamplesPerMesh(const MeshSamplingOptions& options, std::int64_t cycles) {
   if (options.samples_per_mesh) return static_cast<int>(*options.samples_per_mesh);
-  const long budget =
-      MeshSamplingOptions::kMaxAutoSamples / std::max<std::int64_t>(1, period_meshes);
+  const long budget = MeshSamplingOptions::kMaxAutoSamples / std::max<std::int64_t>(1, cycles);
   return static_cast<int>(std::clamp<long>(budget, kMinAutoSamplesPerMesh, kDefaultSamplesPerMesh));
 }
 
@@ -46,15 +54,18 @@ void AppendParameters(const MeshParameters& p, MeshSamples* s) {
   s->mu.push_back(p.mu);
 }
 
-// Samples a linear core: stiffness channels (K, K·h, K·μ·b²) and ε from the core itself.
-void SampleLinear(const LinearMeshCore& core, const std::vector<double>& thetas, MeshSamples* s) {
+// Samples a linear core: stiffness channels (K, K·h, K·μ·b²) from the core, ε from the exact
+// model te when given (contact lines), else from the core (user parameters).
+void SampleLinear(const LinearMeshCore& core, const TransmissionErrorModel* te,
+                  const std::vector<double>& thetas, MeshSamples* s) {
   VectorX channels(LinearMeshCore::kNumStiffnessChannels);
   const double b = core.half_face_width();
   for (double theta : thetas) {
     Evaluate(core.stiffness(), theta, channels);
     AppendParameters(MeshParametersFromChannels(channels[0], channels[1], channels[2], b), s);
-    if (core.transmission_error()) {
-      const Vector2 eps = EvalTransmissionError(core, theta);
+    if (te != nullptr || core.transmission_error()) {
+      const Vector2 eps =
+          te != nullptr ? te->CalcTransmissionError(theta) : EvalTransmissionError(core, theta);
       s->te_eta.push_back(eps[0]);
       s->te_zeta.push_back(eps[1]);
     }
@@ -117,9 +128,17 @@ json StiffnessHarmonics(const MeshCore& core) {
 }  // namespace
 
 bool MeshSamplingOptions::IsValid(std::string* why) const {
+  std::ostringstream out;
+  if (cycles) {
+    const double c = *cycles;
+    if (!std::isfinite(c) || c != std::floor(c) || c < 1 || c > kMaxCycles) {
+      out << "--cycles: must be an integer in [1, " << kMaxCycles << "], got " << c;
+      if (why != nullptr) *why = out.str();
+      return false;
+    }
+  }
   if (!samples_per_mesh) return true;
   const double n = *samples_per_mesh;
-  std::ostringstream out;
   if (!std::isfinite(n) || n != std::floor(n)) {
     out << "--samples: must be an integer, got " << n;
   } else if (n < 1) {
@@ -141,16 +160,31 @@ json MakeMeshReport(const Scene& scene, const MeshSamplingOptions& options,
   json meshes = json::array();
   samples->clear();
   for (const MeshDef& mesh : scene.meshes) {
-    const BuiltMeshCore built = BuildMeshCore(scene, mesh);
-    const std::int64_t period = PeriodMeshes(built.core);
-    const int per_mesh = SamplesPerMesh(options, period);
-    const std::int64_t count = period * per_mesh;
+    // The slice core keeps its separations (from ε); a linear core is built without ε, which is
+    // evaluated exactly at the samples instead of tabulated over the hunting period.
+    const bool slices = mesh.model.level == MeshModelLevel::kNonlinearSlices;
+    const BuiltMeshCore built = BuildMeshCore(scene, mesh, /*transmission_error=*/slices);
+    std::optional<TransmissionErrorModel> te;
+    if (!slices && built.contact_lines) {
+      te = MakeMeshTransmissionErrorModel(scene, mesh, *built.contact_lines);
+    }
+    const std::int64_t period = std::max(PeriodMeshes(built.core), te ? te->period_meshes() : 1);
+    const std::int64_t cycles = WindowCycles(options, period);
+    const int per_mesh = SamplesPerMesh(options, cycles);
+    const std::int64_t count = cycles * per_mesh;
     GEARDYN_THROW_UNLESS(
         count <= MeshSamplingOptions::kMaxSamples,
-        "--samples: " << per_mesh << " samples per mesh cycle × " << period << " mesh cycles (mesh."
-                      << mesh.name << "'s period) = " << count << " rows exceed the limit "
+        "--samples: " << per_mesh << " samples per mesh cycle × " << cycles << " mesh cycles ("
+                      << (options.cycles ? "--cycles" : "mesh." + mesh.name + "'s period")
+                      << ") = " << count << " rows exceed the limit "
                       << MeshSamplingOptions::kMaxSamples << " ("
-                      << RowCost(static_cast<double>(count)) << "); use fewer samples");
+                      << RowCost(static_cast<double>(count)) << "); use fewer samples or cycles");
+    std::vector<std::string> warnings = built.warnings;
+    if (!options.cycles && cycles < period) {
+      warnings.push_back("mesh." + mesh.name + ": sampled over the first " +
+                         std::to_string(cycles) + " of the " + std::to_string(period) +
+                         " mesh cycles of its hunting period (--cycles to choose the window)");
+    }
     MeshSamples s;
     s.mesh_name = mesh.name;
     std::vector<double> thetas(static_cast<size_t>(count));
@@ -162,7 +196,7 @@ json MakeMeshReport(const Scene& scene, const MeshSamplingOptions& options,
         [&](const auto& core) {
           using T = std::decay_t<decltype(core)>;
           if constexpr (std::is_same_v<T, LinearMeshCore>) {
-            SampleLinear(core, thetas, &s);
+            SampleLinear(core, te ? &*te : nullptr, thetas, &s);
           } else if constexpr (std::is_same_v<T, SliceMeshCore>) {
             SampleSlices(core, thetas, &s);
           } else {
@@ -177,6 +211,7 @@ json MakeMeshReport(const Scene& scene, const MeshSamplingOptions& options,
               {"time_dependence", TimeDependenceName(Classify(built.core))},
               {"drive_sign", built.drive_sign},
               {"period_meshes", period},
+              {"cycles", cycles},
               {"samples_per_mesh", per_mesh},
               {"stiffness", Range(s.stiffness)},
               {"load_centre", Range(s.load_centre)},
@@ -185,7 +220,7 @@ json MakeMeshReport(const Scene& scene, const MeshSamplingOptions& options,
               {"te_eta", Range(s.te_eta)},
               {"te_zeta", Range(s.te_zeta)},
               {"stiffness_harmonic_amplitudes", StiffnessHarmonics(built.core)},
-              {"warnings", built.warnings}};
+              {"warnings", warnings}};
     meshes.push_back(m);
     samples->push_back(std::move(s));
   }

@@ -1,7 +1,9 @@
 /// @file
 /// @brief The `geardyn mesh` report: the mesh parameters K(θ), h(θ), κ(θ), μ(θ) and the
 /// transmission-error pair ε(θ) of every mesh of a scene, sampled over one period of its core
-/// (one mesh cycle, or the hunting period when tooth-to-tooth errors are present).
+/// (one mesh cycle, or the hunting period when tooth-to-tooth errors are present) or over the
+/// window the user asks for. ε of a contact-line mesh is evaluated exactly at each sample
+/// (TransmissionErrorModel), never tabulated over the hunting period first.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -20,7 +22,15 @@ struct MeshSamplingOptions {
   /// one-cycle period, fewer (≥ 16) for a hunting period so that a mesh has at most
   /// kMaxAutoSamples rows.
   std::optional<double> samples_per_mesh;
+  /// Mesh cycles sampled from θ = 0, an integer in [1, kMaxCycles]; empty = the period of the
+  /// mesh (one cycle, or the hunting period with tooth errors), at most kMaxAutoCycles of it.
+  std::optional<double> cycles;
   static constexpr long kMaxAutoSamples = 200000;
+  /// The default window over a long hunting period (997/991 teeth: 988 027 cycles): 12 500
+  /// cycles at 16 samples, kMaxAutoSamples rows; a warning says how much of the period it is.
+  static constexpr long kMaxAutoCycles = 12500;
+  /// Upper bound of --cycles (2^31: the hunting period of any pair the models accept).
+  static constexpr long kMaxCycles = 2147483647;
   /// 10⁵ samples per cycle resolve a mesh cycle to 10⁻⁵ (the stiffness steps of the contact
   /// lines are located exactly by the cores; the samples only draw them).
   static constexpr long kMaxSamplesPerMesh = 100000;

@@ -69,6 +69,7 @@ class ChartContext {
     }
     SceneSystemOptions system_options;
     system_options.analysis = "stability-chart";  // named if a mass is missing
+    system_options.transmission_error = false;    // homogeneous problem: ε is forcing
     Built b;
     b.model = std::make_shared<const SystemModel>(MakeSystemModel(scene, system_options));
     b.mesh_hz = scene.MeshFrequencyHz(scene.meshes[0]);

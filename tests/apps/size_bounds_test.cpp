@@ -66,6 +66,54 @@ TEST(SizeBoundsTest, MeshRowsOverAHuntingPeriodBoundAtItsEdge) {
   EXPECT_EQ(inside["period_meshes"].get<long>() * inside["samples_per_mesh"].get<long>(), max_rows);
 }
 
+// ------------------------------------------------------------------ coprime teeth, ε table
+
+// 997/991 teeth with a runout: ε repeats over P = 988 027 mesh cycles.
+std::vector<std::string> CoprimeRunout(std::vector<std::string> args) {
+  for (const char* set : {"gear.pinion.teeth=997", "gear.wheel.teeth=991",
+                          "mesh.pinion-wheel.errors.gear_runout=1e-5"}) {
+    args.insert(args.end(), {"--set", set});
+  }
+  return args;
+}
+
+TEST(SizeBoundsTest, MeshSamplesAWindowOfTheHuntingPeriod) {
+  // Default: the first kMaxAutoCycles cycles at 16 samples, with a warning naming the period.
+  const nlohmann::json automatic = RunJson(CoprimeRunout({"mesh", kPair}))["meshes"][0];
+  EXPECT_EQ(automatic["period_meshes"].get<long>(), 988027);
+  EXPECT_EQ(automatic["cycles"].get<long>(), app::MeshSamplingOptions::kMaxAutoCycles);
+  EXPECT_EQ(automatic["samples_per_mesh"].get<long>(), 16);
+  bool warned = false;
+  for (const nlohmann::json& w : automatic["warnings"]) {
+    warned |= w.get<std::string>().find("first 12500 of the 988027 mesh cycles") !=
+              std::string::npos;
+  }
+  EXPECT_TRUE(warned) << automatic["warnings"].dump();
+  // --cycles: what the user asks for, at the automatic 360 samples per cycle.
+  const nlohmann::json three =
+      RunJson(CoprimeRunout({"mesh", kPair, "--cycles", "3"}))["meshes"][0];
+  EXPECT_EQ(three["cycles"].get<long>(), 3);
+  EXPECT_EQ(three["samples_per_mesh"].get<long>(), 360);
+  ExpectRejected({"mesh", kPair, "--cycles", "0"}, {"--cycles", "must be an integer", "got 0"});
+  ExpectRejected({"mesh", kPair, "--cycles", "1.5"}, {"--cycles", "got 1.5"});
+  ExpectRejected({"mesh", kPair, "--cycles", "20001", "--samples", "100"},
+                 {"--samples", "20001 mesh cycles (--cycles)", "exceed the limit 2000000"});
+}
+
+TEST(SizeBoundsTest, TransmissionErrorTableOverAHuntingPeriodIsBounded) {
+  // The forced response needs ε over the hunting period: 256 samples × 988 027 cycles = 2.5·10⁸
+  // (4 GB) are refused at once, naming the period and the cost; so are 17 samples per cycle
+  // (1.68·10⁷ > 2^24 = 1.678·10⁷; 16 would pass the bound).
+  ExpectRejected(CoprimeRunout({"hb", kPair, "--mesh-frequency", "2500", "--harmonics", "1"}),
+                 {"mesh.pinion-wheel.errors", "hunting period of 988027 mesh cycles",
+                  "lcm of 997 and 991", "GB", "above the limit 16777216"});
+  ExpectRejected(CoprimeRunout({"hb", kPair, "--mesh-frequency", "2500", "--harmonics", "1",
+                                "--set", "mesh.pinion-wheel.table_samples=17"}),
+                 {"17 samples per cycle would hold 16796459 samples"});
+  // The homogeneous analyses build no ε: the same scene runs.
+  EXPECT_GT(RunJson(CoprimeRunout({"modes", kPair}))["modes"].size(), 0u);
+}
+
 // ------------------------------------------------------------------ stability-chart
 
 TEST(SizeBoundsTest, ChartGridBoundAtItsEdge) {

@@ -276,63 +276,97 @@ TableCoefficient MakeSeparationTableCoefficient(const TransmissionErrorModel& mo
   return TableCoefficient(std::move(samples), model.period_meshes());
 }
 
-FourierCoefficient MakeSeparationFourierCoefficient(const TransmissionErrorModel& model,
-                                                    int num_terms) {
-  GEARDYN_THROW_UNLESS(num_terms >= 0, "num_terms: must be >= 0, got " << num_terms);
-  const UnloadedSeparation& sep = model.separation();
-  const std::int64_t period = model.period_meshes();
-  const auto P = static_cast<double>(period);
-  const double cos_b = std::cos(model.contact_lines().zone().base_helix_angle);
-  const std::vector<LinePiece> pieces = BuildLinePieces(model);
-  const bool has_pitch = !sep.pinion_flank_lags().empty() || !sep.gear_flank_lags().empty();
+namespace {
 
-  // Runout terms: A cos(θ r/P + φ) with r = P/z multiplies the mesh-periodic (∫k, ∫kσ), whose
-  // harmonic h is ĝ_K(h)/2π (Poisson): it adds (A/2)[e^{iφ} K̂((m − r)/P) + e^{−iφ} K̂((m + r)/P)].
+/// The exact Fourier coefficients of the separation channels over the hunting period (see the
+/// header's "Structure over θ"): built once per model, evaluated per harmonic m.
+class SeparationHarmonicsEvaluator {
+ public:
+  explicit SeparationHarmonicsEvaluator(const TransmissionErrorModel& model)
+      : sep_(model.separation()),
+        period_(model.period_meshes()),
+        cos_b_(std::cos(model.contact_lines().zone().base_helix_angle)),
+        pieces_(BuildLinePieces(model)),
+        has_pitch_(!sep_.pinion_flank_lags().empty() || !sep_.gear_flank_lags().empty()) {
+    // Runout terms: A cos(θ r/P + φ) with r = P/z multiplies the mesh-periodic (∫k, ∫kσ), whose
+    // harmonic h is ĝ_K(h)/2π (Poisson): it adds (A/2)[e^{iφ} K̂((m − r)/P) + e^{−iφ} K̂((m +
+    // r)/P)].
+    const ToothErrors& e = sep_.errors();
+    if (e.pinion_runout > 0.0) {
+      runouts_.push_back(
+          {-cos_b_ * e.pinion_runout, e.pinion_runout_phase, period_ / e.pinion_teeth});
+    }
+    if (e.gear_runout > 0.0) {
+      runouts_.push_back({cos_b_ * e.gear_runout, e.gear_runout_phase, period_ / e.gear_teeth});
+    }
+  }
+
+  /// c_m of (∫ke [N], ∫kσe [N·m]), m ≥ 0.
+  Eigen::Matrix<Complex, kNumSeparationChannels, 1> operator()(std::int64_t m) const {
+    Eigen::Matrix<Complex, kNumSeparationChannels, 1> c =
+        Eigen::Matrix<Complex, kNumSeparationChannels, 1>::Zero();
+    const auto P = static_cast<double>(period_);
+    const bool mesh_harmonic = m % period_ == 0;
+    // Â_m = cos β_b Σ_{n<P} (F_1[n mod z_1] − F_2[n mod z_2]) e^{−2πimn/P}
+    Complex pitch(0.0, 0.0);
+    if (has_pitch_) {
+      pitch = cos_b_ * (LagSequenceDft(sep_.pinion_flank_lags(), period_, m) -
+                        LagSequenceDft(sep_.gear_flank_lags(), period_, m));
+    }
+    if (mesh_harmonic || pitch != Complex(0.0, 0.0)) {
+      const LineTransform g = CalcLineTransform(pieces_, static_cast<double>(m) / P);
+      if (mesh_harmonic) c += g.tail<2>() / kTwoPi;  // flank modifications (period 2π)
+      c += g.head<2>() * pitch / (kTwoPi * P);       // pitch deviations (period 2πP)
+    }
+    for (const Runout& r : runouts_) {
+      for (int side : {1, -1}) {
+        const std::int64_t num = m - side * r.shift;
+        if (num % period_ != 0) continue;
+        const double h = static_cast<double>(num / period_);  // mesh harmonic of (K, K·h)
+        const LineTransform g = CalcLineTransform(pieces_, h);
+        c += 0.5 * r.amplitude * std::polar(1.0, side * r.phase) * g.head<2>() / kTwoPi;
+      }
+    }
+    return c;
+  }
+
+ private:
   struct Runout {
     double amplitude;    // A [m]
     double phase;        // φ [rad]
     std::int64_t shift;  // r = P/z
   };
-  std::vector<Runout> runouts;
-  const ToothErrors& e = sep.errors();
-  if (e.pinion_runout > 0.0) {
-    runouts.push_back({-cos_b * e.pinion_runout, e.pinion_runout_phase, period / e.pinion_teeth});
-  }
-  if (e.gear_runout > 0.0) {
-    runouts.push_back({cos_b * e.gear_runout, e.gear_runout_phase, period / e.gear_teeth});
-  }
+  const UnloadedSeparation& sep_;
+  std::int64_t period_;
+  double cos_b_;
+  std::vector<LinePiece> pieces_;
+  bool has_pitch_;
+  std::vector<Runout> runouts_;
+};
 
-  auto coefficient = [&](std::int64_t m) {
-    Eigen::Matrix<Complex, kNumSeparationChannels, 1> c =
-        Eigen::Matrix<Complex, kNumSeparationChannels, 1>::Zero();
-    const bool mesh_harmonic = m % period == 0;
-    Complex pitch(0.0,
-                  0.0);  // Â_m = cos β_b Σ_{n<P} (F_1[n mod z_1] − F_2[n mod z_2]) e^{−2πimn/P}
-    if (has_pitch) {
-      pitch = cos_b * (LagSequenceDft(sep.pinion_flank_lags(), period, m) -
-                       LagSequenceDft(sep.gear_flank_lags(), period, m));
-    }
-    if (mesh_harmonic || pitch != Complex(0.0, 0.0)) {
-      const LineTransform g = CalcLineTransform(pieces, static_cast<double>(m) / P);
-      if (mesh_harmonic) c += g.tail<2>() / kTwoPi;  // flank modifications (period 2π)
-      c += g.head<2>() * pitch / (kTwoPi * P);       // pitch deviations (period 2πP)
-    }
-    for (const Runout& r : runouts) {
-      for (int side : {1, -1}) {
-        const std::int64_t num = m - side * r.shift;
-        if (num % period != 0) continue;
-        const double h = static_cast<double>(num / period);  // mesh harmonic of (K, K·h)
-        const LineTransform g = CalcLineTransform(pieces, h);
-        c += 0.5 * r.amplitude * std::polar(1.0, side * r.phase) * g.head<2>() / kTwoPi;
-      }
-    }
-    return c;
-  };
+}  // namespace
 
+FourierCoefficient MakeSeparationFourierCoefficient(const TransmissionErrorModel& model,
+                                                    int num_terms) {
+  GEARDYN_THROW_UNLESS(num_terms >= 0, "num_terms: must be >= 0, got " << num_terms);
+  const SeparationHarmonicsEvaluator coefficient(model);
   const VectorX mean = coefficient(0).real();
   MatrixXc harmonics(kNumSeparationChannels, num_terms);
   for (int m = 1; m <= num_terms; ++m) harmonics.col(m - 1) = coefficient(m);
-  return FourierCoefficient(mean, std::move(harmonics), period);
+  return FourierCoefficient(mean, std::move(harmonics), model.period_meshes());
+}
+
+MatrixXc CalcSeparationHarmonics(const TransmissionErrorModel& model,
+                                 const std::vector<std::int64_t>& harmonics) {
+  for (std::int64_t m : harmonics) {
+    GEARDYN_THROW_UNLESS(m >= 0, "harmonics: must be >= 0, got " << m);
+  }
+  const SeparationHarmonicsEvaluator coefficient(model);
+  MatrixXc out(kNumSeparationChannels, static_cast<Eigen::Index>(harmonics.size()));
+  for (size_t i = 0; i < harmonics.size(); ++i) {
+    out.col(static_cast<Eigen::Index>(i)) = coefficient(harmonics[i]);
+  }
+  return out;
 }
 
 TableCoefficient MakeTransmissionErrorTableCoefficient(const TransmissionErrorModel& model,

@@ -13,6 +13,7 @@
 
 #include "geardyn/common/check.hpp"
 #include "geardyn/models/mesh/transmission_error.hpp"
+#include "geardyn/models/scene/mesh_transmission_error.hpp"
 #include "geardyn/models/scene/planetary.hpp"
 #include "geardyn/models/scene/scene.hpp"
 #include "scene/mesh_model_reader.hpp"
@@ -76,23 +77,41 @@ LinearMeshCore MakeUserCore(const MeshDef& mesh) {
   return model.level == MeshModelLevel::kMeanLti ? MakeMeanLinearMeshCore(core) : core;
 }
 
-// ε(θ) from the modifications and errors on the contact lines (none when they are all zero).
-std::optional<Coefficient> MakeTransmissionError(const ContactLineModel& lines,
-                                                 const MeshModelDef& model, ToothErrors errors) {
-  if (!internal::HasUnloadedSeparation(model.modifications, errors)) return std::nullopt;
-  const TransmissionErrorModel te(lines, model.modifications, errors);
-  const MeshCoefficientOptions& options = model.core_options.coefficient;
+// ε(θ) from the modifications and errors on the contact lines (none when they are all zero), as
+// a table (or its Fourier series) over the hunting period, bounded by
+// kMaxTransmissionErrorSamples samples.
+std::optional<Coefficient> MakeTransmissionError(const Scene& scene, const MeshDef& mesh,
+                                                 const ContactLineModel& lines) {
+  const std::optional<TransmissionErrorModel> te =
+      MakeMeshTransmissionErrorModel(scene, mesh, lines);
+  if (!te) return std::nullopt;
+  const MeshCoefficientOptions& options = mesh.model.core_options.coefficient;
+  const std::int64_t period = te->period_meshes();
+  const std::int64_t samples = static_cast<std::int64_t>(options.num_samples) * period;
+  GEARDYN_THROW_UNLESS(
+      samples <= kMaxTransmissionErrorSamples,
+      "mesh."
+          << mesh.name << ".errors: the transmission error repeats over a hunting period of "
+          << period << " mesh cycles (lcm of " << te->separation().errors().pinion_teeth << " and "
+          << te->separation().errors().gear_teeth << " teeth); its table of " << options.num_samples
+          << " samples per cycle would hold " << samples << " samples ("
+          << static_cast<double>(samples) * 16.0 / 1e9
+          << " GB, several times more in a harmonic balance), above the limit "
+          << kMaxTransmissionErrorSamples
+          << ". modes, floquet and stability-chart do not need it, and mesh samples it "
+             "directly (linear models); for a forced response lower table_samples, or give tooth "
+             "counts with a common factor, or leave out the pitch errors and runout");
   if (options.form == MeshCoefficientForm::kFourier) {
     const int per_mesh =
         options.num_terms > 0 ? options.num_terms : (options.num_samples + 1) / 2 - 1;
-    const std::int64_t terms = static_cast<std::int64_t>(per_mesh) * te.period_meshes();
+    const std::int64_t terms = static_cast<std::int64_t>(per_mesh) * period;
     GEARDYN_THROW_UNLESS(terms <= std::numeric_limits<int>::max(),
                          "fourier_terms: " << per_mesh << " harmonics per mesh cycle over "
-                                           << te.period_meshes() << " cycles is too many");
-    return MakeTransmissionErrorFourierCoefficient(te, static_cast<int>(terms),
+                                           << period << " cycles is too many");
+    return MakeTransmissionErrorFourierCoefficient(*te, static_cast<int>(terms),
                                                    options.num_samples);
   }
-  return MakeTransmissionErrorTableCoefficient(te, options.num_samples);
+  return MakeTransmissionErrorTableCoefficient(*te, options.num_samples);
 }
 
 }  // namespace
@@ -177,11 +196,8 @@ BuiltMeshCore BuildMeshCore(const Scene& scene, const MeshDef& mesh, bool transm
   MeshCoreSource source = MakeMeshCoreSource(mesh.geometry, stiffness, drive_sign);
   for (const std::string& w : source.warnings) warnings.push_back("mesh." + mesh.name + ": " + w);
   source.damping = model.damping;
-  ToothErrors errors = model.errors;
-  if (errors.pinion_teeth == 0) errors.pinion_teeth = scene.gear(mesh.pinion).blank.teeth;
-  if (errors.gear_teeth == 0) errors.gear_teeth = scene.gear(mesh.gear).blank.teeth;
   if (transmission_error) {
-    source.transmission_error = MakeTransmissionError(source.contact_lines, model, errors);
+    source.transmission_error = MakeTransmissionError(scene, mesh, source.contact_lines);
   }
 
   MeshCoreOptions options = model.core_options;

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <numeric>
@@ -633,6 +634,59 @@ TEST(TransmissionErrorTest, TablesHoldExactSamples) {
     worst = std::max(worst, std::abs(value[0] - hunting.CalcTransmissionError(theta)[0]));
   }
   EXPECT_LT(worst, 0.05 * kUm);
+}
+
+// Coprime tooth counts (23/19, hunting period P = 437) with pitch deviations and runout on both
+// members: the harmonics computed directly at any m (CalcSeparationHarmonics, Poisson sums)
+// against an FFT (ToFourier of the table) of the pointwise channels sampled over the whole
+// hunting period. Every m up to 3P + 40 is compared, so the zeros between the mesh orders and
+// their sidebands jP ± 19, jP ± 23 (and the pitch lines at multiples of 19 and 23) are checked
+// too. Helical channels are continuous with kinks: the FFT of 2048 samples per mesh cycle errs
+// by O(h²), 16 × the 1e-6 of FourierCoefficientsAreExact's 8192 → 2e-5.
+TEST(TransmissionErrorTest, DirectHarmonicsMatchAnFftOverTheCoprimeHuntingPeriod) {
+  const ToothModifications m = SampleModifications();
+  ToothErrors err;
+  err.pinion_teeth = 23;
+  err.gear_teeth = 19;
+  for (int i = 0; i < 23; ++i) {
+    err.pinion_pitch_deviations.push_back(1.5 * kUm * std::sin(kTwoPi * 3 * i / 23.0) +
+                                          0.7 * kUm * std::cos(kTwoPi * 5 * i / 23.0));
+  }
+  for (int i = 0; i < 19; ++i) {
+    err.gear_pitch_deviations.push_back(1.1 * kUm * std::cos(kTwoPi * 2 * i / 19.0));
+  }
+  err.pinion_runout = 4 * kUm;
+  err.pinion_runout_phase = 0.3;
+  err.gear_runout = 6 * kUm;
+  err.gear_runout_phase = 2.1;
+  const TransmissionErrorModel model(
+      ContactLineModel(Zone(1.55, 1.3, 0.2 * kPitch, 1), ToothProfile(1.55)), m, err);
+  ASSERT_EQ(model.period_meshes(), 437);
+  const int highest = 3 * 437 + 40;
+  const FourierCoefficient fft =
+      ToFourier(Coefficient(MakeSeparationTableCoefficient(model, 2048)), highest);
+  std::vector<std::int64_t> wanted(highest + 1);
+  std::iota(wanted.begin(), wanted.end(), std::int64_t{0});
+  const MatrixXc direct = CalcSeparationHarmonics(model, wanted);
+  ASSERT_EQ(direct.cols(), highest + 1);
+  const double scale = kK * kFace * 10 * kUm;
+  double b = 1.0;
+  for (int ch = 0; ch < kNumSeparationChannels; ++ch) {
+    EXPECT_NEAR(std::abs(direct(ch, 0) - fft.mean()[ch]), 0.0, 2e-5 * scale * b);
+    for (int k = 1; k <= highest; ++k) {
+      EXPECT_NEAR(std::abs(direct(ch, k) - fft.harmonics()(ch, k - 1)), 0.0, 2e-5 * scale * b)
+          << "channel " << ch << " harmonic " << k;
+    }
+    b *= 0.5 * kFace;
+  }
+  // The sidebands carry what the runouts put there: the first-order runout lines are of the
+  // size A·K̄/2 (not a round-off): compare magnitudes against the FFT at jP ± r.
+  for (std::int64_t j : {1, 2}) {
+    for (std::int64_t r : {19, 23}) {
+      EXPECT_GT(std::abs(direct(0, j * 437 + r)), 1e-4 * scale);
+    }
+  }
+  EXPECT_THROWS_MESSAGE(CalcSeparationHarmonics(model, {-1}), InvalidInput, "harmonics");
 }
 
 // ------------------------------------------------------------------------- error paths

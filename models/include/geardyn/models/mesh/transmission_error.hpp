@@ -130,6 +130,18 @@ TableCoefficient MakeSeparationTableCoefficient(const TransmissionErrorModel& mo
 FourierCoefficient MakeSeparationFourierCoefficient(const TransmissionErrorModel& model,
                                                     int num_terms);
 
+/// @brief The exact Fourier coefficients c_m of (∫ke [N], ∫kσe [N·m]) over the period 2πP at the
+/// given harmonics m ≥ 0 only (harmonic m has m/P times the mesh frequency; c(θ) = c_0 + 2 Re
+/// Σ_{m>0} c_m e^{imθ/P}, as MakeSeparationFourierCoefficient): the same Poisson sums, without the
+/// harmonics in between. What a forced response needs over a long hunting period (997/991 teeth:
+/// P = 988 027): the mesh orders jP and their runout sidebands jP ± P/z, never a sampled period.
+/// Cost per m: O(pieces of g) when m is a mesh order or a runout sideband, plus O(z) when pitch
+/// deviations reach it; 0 otherwise.
+/// @return (2 × harmonics.size()); column i is c_{harmonics[i]} (c_0 real: the mean).
+/// @throws InvalidInput naming harmonics (a negative m).
+MatrixXc CalcSeparationHarmonics(const TransmissionErrorModel& model,
+                                 const std::vector<std::int64_t>& harmonics);
+
 /// @brief S = samples_per_mesh·P exact samples of ε = (ε_η [m], ε_ζ [rad]) (linear interpolation).
 /// @throws InvalidInput naming samples_per_mesh.
 TableCoefficient MakeTransmissionErrorTableCoefficient(const TransmissionErrorModel& model,

@@ -77,9 +77,9 @@ struct SceneSystemOptions {
   /// Scene::planar (the scene's top-level `planar = true`) does the same.
   bool planar = false;
   /// Build the transmission error ε of the contact-line meshes (modifications, tooth errors).
-  /// False for analyses of the mean (LTI) operator only (modes): ε never enters K or C, and
-  /// with tooth errors it is a table over the whole hunting period (lcm(z_1, z_2) mesh cycles),
-  /// the costliest part of the build. Meshes then load nothing through K2 ε, and
+  /// False for analyses of the homogeneous operator only (modes, floquet, stability-chart): ε
+  /// never enters K or C, and with tooth errors it is a table over the whole hunting period
+  /// (lcm(z_1, z_2) mesh cycles), the costliest part of the build. Meshes then load nothing through K2 ε, and
   /// SystemModel::period_meshes() is the operator's.
   bool transmission_error = true;
   /// What the model is built for, named by the error when a body lacks `mass` or `inertia`
