@@ -212,8 +212,7 @@ TEST(FloquetCommand, CoprimeTeethWithRunoutNeedNoHuntingPeriod) {
   std::vector<std::string> plain_args = {"floquet", "builtin:helical-pair"};
   plain_args.insert(plain_args.end(), teeth.begin(), teeth.end());
   std::vector<std::string> runout_args = plain_args;
-  runout_args.insert(runout_args.end(),
-                     {"--set", "mesh.pinion-wheel.errors.gear_runout=1e-5"});
+  runout_args.insert(runout_args.end(), {"--set", "mesh.pinion-wheel.errors.gear_runout=1e-5"});
   const nlohmann::json plain = RunJson(plain_args);
   const nlohmann::json runout = RunJson(runout_args);
   EXPECT_EQ(runout["counters"]["load_period_meshes"].get<long>(), 1);

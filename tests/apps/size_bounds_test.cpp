@@ -85,8 +85,8 @@ TEST(SizeBoundsTest, MeshSamplesAWindowOfTheHuntingPeriod) {
   EXPECT_EQ(automatic["samples_per_mesh"].get<long>(), 16);
   bool warned = false;
   for (const nlohmann::json& w : automatic["warnings"]) {
-    warned |= w.get<std::string>().find("first 12500 of the 988027 mesh cycles") !=
-              std::string::npos;
+    warned |=
+        w.get<std::string>().find("first 12500 of the 988027 mesh cycles") != std::string::npos;
   }
   EXPECT_TRUE(warned) << automatic["warnings"].dump();
   // --cycles: what the user asks for, at the automatic 360 samples per cycle.

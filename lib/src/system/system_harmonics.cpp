@@ -109,6 +109,77 @@ Coefficient MeshValueCoefficient(const SystemMesh& mesh, std::int64_t core_perio
   return TableCoefficient(std::move(table), core_period);
 }
 
+// True for a linear core whose ε repeats over a longer period than its stiffness (tooth errors)
+// and has a finite series (Fourier, or a table as its trigonometric interpolant): the load
+// harmonics are then the convolution of those of K2 and ε (ErrorPeriodValueHarmonics).
+bool HasErrorPeriodLoad(const MeshCore& core, std::int64_t core_period) {
+  const auto* linear = std::get_if<LinearMeshCore>(&core);
+  if (linear == nullptr || !linear->transmission_error()) return false;
+  if (PeriodMeshes(linear->stiffness()) >= core_period) return false;
+  const Coefficient& eps = *linear->transmission_error();
+  return std::holds_alternative<FourierCoefficient>(eps) ||
+         std::holds_alternative<TableCoefficient>(eps);
+}
+
+// The 8 value channels' harmonics n = 0 … N (units of 1/P_k, P_k = core_period; column n) of a
+// core with HasErrorPeriodLoad, by FFT synthesis instead of samples over the hunting period:
+// K2 and C2 from one stiffness period P_K (exact steps, or samples; harmonic j of 1/P_K is n = jr,
+// r = P_k/P_K), ε from its own series (a table's FFT: its trigonometric interpolant, as
+// everywhere in this file), and the load K2 ε as their convolution
+//   (K2 ε)_n = Σ_j K2_j ε_{n − jr},   X_{−i} = conj(X_i),
+// over the j that reach ε's band |n − jr| ≤ B. Exact for that ε: K2's harmonics are exact (steps,
+// Fourier) or those of its own interpolant up to the order (N + B)/r the sum needs. Memory
+// O(N + B + samples of one stiffness period), against 8 channels sampled at
+// 2(N + 2B) + 2 points over the hunting period before (0.7 GB for the helical pair with runout).
+MatrixXc ErrorPeriodValueHarmonics(const SystemMesh& mesh, const LinearMeshCore& core,
+                                   std::int64_t core_period, int N) {
+  const std::int64_t pk = PeriodMeshes(core.stiffness());
+  const std::int64_t r = core_period / pk;
+  const Coefficient& eps = *core.transmission_error();
+  const std::int64_t pe = PeriodMeshes(eps);
+  const std::int64_t re = core_period / pe;  // ε's harmonic i is core harmonic i·re
+  const int eps_terms = HighestHarmonic(eps, pe);
+  const FourierCoefficient eps_series = ToFourier(eps, eps_terms);
+  const std::int64_t B = static_cast<std::int64_t>(eps_terms) * re;
+  const auto J = static_cast<int>((N + B) / r);
+  const FourierCoefficient op =
+      ToFourier(MeshValueCoefficient(mesh, pk, J, /*with_load=*/false), J);
+  const auto op_at = [&](std::int64_t j) -> VectorXc {  // K2, C2 channels at harmonic j of 1/P_K
+    const std::int64_t a = std::abs(j);
+    const VectorXc c = a == 0 ? VectorXc(op.mean().cast<std::complex<double>>())
+                              : VectorXc(op.harmonics().col(a - 1));
+    return j >= 0 ? c : VectorXc(c.conjugate());
+  };
+  std::vector<Matrix2c> k2(static_cast<size_t>(2 * J + 1));  // index j + J
+  for (int j = -J; j <= J; ++j) {
+    const VectorXc c = op_at(j);
+    k2[static_cast<size_t>(j + J)] << c(0), c(1), c(1), c(2);
+  }
+  const auto eps_at = [&](std::int64_t i) -> Vector2c {  // ε at core harmonic i, |i| ≤ B
+    const std::int64_t a = std::abs(i) / re;
+    const Vector2c c = a == 0 ? Vector2c(eps_series.mean().cast<std::complex<double>>())
+                              : Vector2c(eps_series.harmonics().col(a - 1));
+    return i >= 0 ? c : Vector2c(c.conjugate());
+  };
+  MatrixXc values = MatrixXc::Zero(kNumValueChannels, N + 1);
+  for (int n = 0; n <= N; ++n) {
+    if (n % r == 0) values.col(n).head<6>() = op_at(n / r).head<6>();
+    // j with |n − jr| ≤ B: ⌈(n − B)/r⌉ … ⌊(n + B)/r⌋ (n + B ≥ 0, so the upper one truncates).
+    const std::int64_t lo_num = n - B;
+    const std::int64_t j_lo = lo_num >= 0 ? (lo_num + r - 1) / r : -((-lo_num) / r);
+    const std::int64_t j_hi = (n + B) / r;
+    Vector2c load = Vector2c::Zero();
+    for (std::int64_t j = std::max<std::int64_t>(j_lo, -J); j <= std::min<std::int64_t>(j_hi, J);
+         ++j) {
+      const std::int64_t i = n - j * r;
+      if (i % re != 0) continue;
+      load += k2[static_cast<size_t>(j + J)] * eps_at(i);
+    }
+    values.col(n).tail<2>() = load;
+  }
+  return values;
+}
+
 }  // namespace
 
 std::vector<MeshHarmonics> ExpandMeshHarmonics(const SystemModel& model, int num_harmonics) {
@@ -127,24 +198,29 @@ std::vector<MeshHarmonics> ExpandMeshHarmonics(const SystemModel& model, int num
     // System harmonic m is mesh harmonic n = m / q (q = P / P_k); others vanish.
     const std::int64_t q = system_period / core_period;
     const int mesh_harmonics = static_cast<int>(num_harmonics / q);
-    const FourierCoefficient series =
-        ToFourier(MeshValueCoefficient(mesh, core_period, mesh_harmonics, true), mesh_harmonics);
-    // K2, C2 from their own coefficients when those are stepwise but the load's are not (a spur
-    // pair with a smooth ε): exact sinc sums instead of sampled steps.
-    std::optional<FourierCoefficient> operator_series;
-    if (!internal::AllStepwise(internal::MeshOperatorCoefficients(mesh.core, true)) &&
-        internal::AllStepwise(internal::MeshOperatorCoefficients(mesh.core, false))) {
-      operator_series =
-          ToFourier(MeshValueCoefficient(mesh, core_period, mesh_harmonics, false), mesh_harmonics);
+    MatrixXc values(kNumValueChannels, mesh_harmonics + 1);  // column n: harmonic n of 1/P_k
+    if (HasErrorPeriodLoad(mesh.core, core_period)) {
+      values = ErrorPeriodValueHarmonics(mesh, std::get<LinearMeshCore>(mesh.core), core_period,
+                                         mesh_harmonics);
+    } else {
+      const FourierCoefficient series =
+          ToFourier(MeshValueCoefficient(mesh, core_period, mesh_harmonics, true), mesh_harmonics);
+      values.col(0) = series.mean().cast<std::complex<double>>();
+      if (mesh_harmonics > 0) values.rightCols(mesh_harmonics) = series.harmonics();
+      // K2, C2 from their own coefficients when those are stepwise but the load's are not (a
+      // spur pair with a smooth ε): exact sinc sums instead of sampled steps.
+      if (!internal::AllStepwise(internal::MeshOperatorCoefficients(mesh.core, true)) &&
+          internal::AllStepwise(internal::MeshOperatorCoefficients(mesh.core, false))) {
+        const FourierCoefficient operator_series = ToFourier(
+            MeshValueCoefficient(mesh, core_period, mesh_harmonics, false), mesh_harmonics);
+        values.col(0).head<6>() = operator_series.mean().head<6>().cast<std::complex<double>>();
+        if (mesh_harmonics > 0) {
+          values.block(0, 1, 6, mesh_harmonics) = operator_series.harmonics().topRows<6>();
+        }
+      }
     }
     for (int n = 0; n <= mesh_harmonics; ++n) {
-      VectorXc c = n == 0 ? VectorXc(series.mean().cast<std::complex<double>>())
-                          : VectorXc(series.harmonics().col(n - 1));
-      if (operator_series) {
-        c.head<6>() = n == 0
-                          ? VectorXc(operator_series->mean().cast<std::complex<double>>()).head<6>()
-                          : VectorXc(operator_series->harmonics().col(n - 1).head<6>());
-      }
+      VectorXc c = values.col(n);
       // θ_k = θ + φ_k: the mesh's e^{inθ_k/P_k} is e^{inφ_k/P_k} e^{imθ/P} in system phase.
       c *= std::polar(
           1.0, static_cast<double>(n) * mesh.phase_offset / static_cast<double>(core_period));
