@@ -18,6 +18,10 @@
 /// highest harmonic of the product (S is chosen so: S ≥ 2(N_k + 2 N_c) + 2 with N_c the
 /// coefficient's own terms and N_k the requested mesh harmonics, at least
 /// kMinSamplesPerMeshPeriod); tables are represented by their trigonometric interpolant.
+/// A linear core whose ε repeats over a longer period than its stiffness (tooth errors, the
+/// hunting period) is not sampled over that period: K2 and C2 come from one stiffness period and
+/// the load K2 ε is the convolution of their harmonics with ε's own (FFT synthesis), exact for
+/// that ε.
 #pragma once
 
 #include <complex>
