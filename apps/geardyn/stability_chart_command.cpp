@@ -136,20 +136,25 @@ std::string ChartSvg(const SceneChart& run, const std::string& title) {
   spec.stable = c.stable;
   spec.ok = c.ok;
   for (const TransitionCurve& t : c.curves) spec.curves.push_back({t.x, t.y, t.closed});
-  // Each region's label at its most unstable point (always inside the region).
-  std::vector<int> peak(c.regions.size(), -1);
+  // Each region's label at its most unstable point (always inside the region), or, when that
+  // place is taken, at its next most unstable points (RenderRegionSvg lays them out).
+  std::vector<std::vector<int>> points(c.regions.size());
   for (std::size_t i = 0; i < c.region.size(); ++i) {
-    const int r = c.region[i];
-    if (r >= 0 && (peak[r] < 0 || c.max_abs_multiplier[i] > c.max_abs_multiplier[peak[r]])) {
-      peak[r] = static_cast<int>(i);
-    }
+    if (c.region[i] >= 0) points[c.region[i]].push_back(static_cast<int>(i));
   }
   std::vector<std::string> marked;
+  const int nx = c.x_axis.num_points;
   for (std::size_t r = 0; r < c.regions.size(); ++r) {
-    const int i = peak[r];
-    const int nx = c.x_axis.num_points;
-    spec.labels.push_back(
-        {c.x_axis.Value(i % nx), c.y_axis.Value(i / nx), RegionLabel(c.regions[r])});
+    std::vector<int>& p = points[r];
+    std::stable_sort(p.begin(), p.end(), [&c](int a, int b) {
+      return c.max_abs_multiplier[a] > c.max_abs_multiplier[b];
+    });
+    RegionPlotLabel label{
+        c.x_axis.Value(p[0] % nx), c.y_axis.Value(p[0] / nx), RegionLabel(c.regions[r]), {}};
+    for (std::size_t k = 1; k < p.size(); ++k) {
+      label.anchors.push_back({c.x_axis.Value(p[k] % nx), c.y_axis.Value(p[k] / nx)});
+    }
+    spec.labels.push_back(std::move(label));
     const ChartRegion& g = c.regions[r];
     if (g.labelled && run.speed_axis == "x" && run.mesh_hz_per_rpm > 0.0 &&
         std::find(marked.begin(), marked.end(), g.resonance.label) == marked.end()) {
