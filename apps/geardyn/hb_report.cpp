@@ -275,7 +275,7 @@ std::string RenderHbPlot(const HbSweepResult& sweep, const std::string& title,
   spec.title = title;
   spec.x_label = "mesh frequency [Hz]";
   PlotPanel panel;
-  panel.y_label = "RMS DTE [um]";
+  panel.y_label = "RMS DTE [µm]";
   const std::size_t meshes = sweep.points.empty() ? 0 : sweep.points.front().meshes.size();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (std::size_t k = 0; k < meshes; ++k) {

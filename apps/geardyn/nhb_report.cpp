@@ -225,7 +225,7 @@ std::string RenderNhbPlot(const SystemNhbCurve& curve, const std::string& title)
   PlotPanel panel;
   const bool has_mesh = !curve.points.empty() && !curve.points.front().meshes.empty();
   panel.y_label =
-      "RMS DTE [um]" + (has_mesh ? " (" + curve.points.front().meshes.front().name + ")" : "");
+      "RMS DTE [µm]" + (has_mesh ? " (" + curve.points.front().meshes.front().name + ")" : "");
   if (has_mesh) {
     // Runs of equal stability; a new run starts at the last point of the previous one so that
     // the curve stays connected. A point that did not converge breaks the curve.

@@ -5,18 +5,143 @@
 #include <sstream>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/label_layout.hpp"
 #include "geardyn/svg_text.hpp"
 
 namespace geardyn::app {
 namespace {
 
 constexpr int kLeft = 90, kRight = 30, kTop = 50, kBottom = 60;
+// Resonance-marker labels: font size, row pitch and the gap between row 0 and the frame [px];
+// the title (font 15, baseline 24) ends above kTitleBottom.
+constexpr double kMarkerFont = 10.0, kMarkerRow = 12.0, kMarkerGap = 6.0, kTitleBottom = 30.0;
+// Region labels: bold font size and the white halo (stroke-width 3) plus 1 px of air [px].
+constexpr double kLabelFont = 12.0, kLabelHalo = 2.5;
+// Text attributes that make the rendered width exactly the laid-out one (label_layout.hpp).
+std::string LengthAttributes(const std::string& text, double font_size) {
+  return " textLength=\"" + FormatTickNumber(TextWidth(text, font_size)) +
+         "\" lengthAdjust=\"spacingAndGlyphs\"";
+}
+
+// A marker label: its centre x and row (0 next to the frame).
+struct MarkerSlot {
+  double x = 0.0;
+  int row = 0;
+};
+
+// Rows for the marker labels at pixel positions px (font kMarkerFont): each takes the lowest row
+// where its box meets no label already in that row; centres are kept within [0, width].
+std::vector<MarkerSlot> LayOutMarkerRows(const std::vector<double>& px,
+                                         const std::vector<std::string>& text, double width,
+                                         int* num_rows) {
+  std::vector<MarkerSlot> slots(px.size());
+  std::vector<std::vector<TextBox>> rows;
+  for (std::size_t k = 0; k < px.size(); ++k) {
+    const double half = 0.5 * TextWidth(text[k], kMarkerFont) + 1.0;
+    const double x =
+        std::clamp(px[k], std::min(half, 0.5 * width), std::max(width - half, 0.5 * width));
+    const TextBox box = CentredTextBox(x, 0.0, text[k], kMarkerFont, 1.0);
+    std::size_t r = 0;
+    for (; r < rows.size(); ++r) {
+      if (std::none_of(rows[r].begin(), rows[r].end(),
+                       [&box](const TextBox& b) { return b.Intersects(box); })) {
+        break;
+      }
+    }
+    if (r == rows.size()) rows.emplace_back();
+    rows[r].push_back(box);
+    slots[k] = {x, static_cast<int>(r)};
+  }
+  *num_rows = static_cast<int>(rows.size());
+  return slots;
+}
 
 // Maps a data interval [lo, hi] onto pixels [p0, p1].
 struct Scale {
   double lo, hi, p0, p1;
   double operator()(double v) const { return p0 + (v - lo) / (hi - lo) * (p1 - p0); }
 };
+
+// Region labels (see the @file): anchors in order, then the free position nearest to the first
+// anchor (with a leader line), else omitted; writes the leader lines, the labels and the note.
+void LayOutRegionLabels(const RegionPlotSpec& spec, const Scale& sx, const Scale& sy,
+                        const TextBox& frame, std::ostringstream& s) {
+  // Baseline offset that centres the box (kAscent above, kDescent below) on the anchor.
+  const double centre_shift = 0.5 * (kAscent - kDescent) * kLabelFont;
+  std::vector<std::size_t> order(spec.labels.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&spec](std::size_t a, std::size_t b) {
+    return spec.labels[a].anchors.size() > spec.labels[b].anchors.size();
+  });
+  LabelLayout layout(frame);
+  std::ostringstream leaders, texts;
+  int omitted = 0;
+  for (const std::size_t k : order) {
+    const RegionPlotLabel& l = spec.labels[k];
+    const auto box_at = [&](double px, double py) {
+      return CentredTextBox(px, py + centre_shift, l.text, kLabelFont, kLabelHalo);
+    };
+    bool placed = false;
+    double at_x = 0.0, at_y = 0.0;
+    for (std::size_t a = 0; a <= l.anchors.size() && !placed; ++a) {
+      const double px = sx(a == 0 ? l.x : l.anchors[a - 1].x);
+      const double py = sy(a == 0 ? l.y : l.anchors[a - 1].y);
+      if (layout.Place(box_at(px, py))) {
+        placed = true;
+        at_x = px;
+        at_y = py;
+      }
+    }
+    const double ax = sx(l.x), ay = sy(l.y);
+    bool leader = false;
+    if (!placed) {
+      // Nearest free position on a lattice of half a label width by one label height.
+      const TextBox b0 = box_at(0.0, 0.0);
+      const double step_x = 0.5 * (b0.x1 - b0.x0), step_y = b0.y1 - b0.y0;
+      const int nx = static_cast<int>((frame.x1 - frame.x0) / step_x) + 1;
+      const int ny = static_cast<int>((frame.y1 - frame.y0) / step_y) + 1;
+      double best = 0.0;
+      for (int j = -ny; j <= ny; ++j) {
+        for (int i = -nx; i <= nx; ++i) {
+          const double px = ax + i * step_x, py = ay + j * step_y;
+          const double d = std::hypot(px - ax, py - ay);
+          if ((!placed || d < best) && layout.Fits(box_at(px, py))) {
+            placed = true;
+            best = d;
+            at_x = px;
+            at_y = py;
+          }
+        }
+      }
+      if (placed) {
+        layout.Place(box_at(at_x, at_y));
+        leader = true;
+      }
+    }
+    if (!placed) {
+      ++omitted;
+      continue;
+    }
+    if (leader) {
+      leaders << "<line x1=\"" << FormatTickNumber(ax) << "\" y1=\"" << FormatTickNumber(ay)
+              << "\" x2=\"" << FormatTickNumber(at_x) << "\" y2=\"" << FormatTickNumber(at_y)
+              << "\" stroke=\"#333\" stroke-width=\"0.8\"/>\n";
+    }
+    texts << "<text x=\"" << FormatTickNumber(at_x) << "\" y=\""
+          << FormatTickNumber(at_y + centre_shift)
+          << "\" text-anchor=\"middle\" font-weight=\"bold\" font-size=\"" << kLabelFont
+          << "\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\""
+          << LengthAttributes(l.text, kLabelFont) << " class=\"region-label\">"
+          << EscapeSvgText(l.text) << "</text>\n";
+  }
+  s << leaders.str() << texts.str();
+  if (omitted > 0) {
+    s << "<text x=\"" << FormatTickNumber(frame.x0) << "\" y=\"" << spec.height - 3
+      << "\" font-size=\"10\">" << omitted
+      << " region label(s) omitted: no room left in the plot (all regions are in the JSON and "
+         "CSV files)</text>\n";
+  }
+}
 
 }  // namespace
 
@@ -32,8 +157,30 @@ std::string RenderRegionSvg(const RegionPlotSpec& spec) {
   const double dy = (spec.y_values.back() - spec.y_values.front()) / static_cast<double>(ny - 1);
   const Scale sx{spec.x_values.front() - 0.5 * dx, spec.x_values.back() + 0.5 * dx,
                  static_cast<double>(kLeft), static_cast<double>(spec.width - kRight)};
+  // Marker labels first: their rows decide where the frame starts.
+  std::vector<double> marker_px;
+  std::vector<std::string> marker_text;
+  std::vector<const RegionPlotMarker*> markers;
+  for (const RegionPlotMarker& m : spec.markers) {
+    if (m.x < sx.lo || m.x > sx.hi) continue;
+    markers.push_back(&m);
+    marker_px.push_back(sx(m.x));
+    marker_text.push_back(m.text);
+  }
+  int marker_rows = 0;
+  const std::vector<MarkerSlot> marker_slots =
+      LayOutMarkerRows(marker_px, marker_text, spec.width, &marker_rows);
+  // Row r has its baseline at top − kMarkerGap − r·kMarkerRow; the highest row's box must stay
+  // below the title.
+  const double top_needed = kTitleBottom + 1.0 + (kAscent * kMarkerFont + 1.0) + kMarkerGap +
+                            kMarkerRow * std::max(0, marker_rows - 1);
+  const int frame_top = std::max(kTop, static_cast<int>(std::ceil(top_needed)));
+  GEARDYN_THROW_UNLESS(frame_top + 40 < spec.height - kBottom,
+                       "RenderRegionSvg: " << marker_rows << " rows of marker labels leave no room "
+                                           << "for the plot (height " << spec.height << " px)");
+
   const Scale sy{spec.y_values.front() - 0.5 * dy, spec.y_values.back() + 0.5 * dy,
-                 static_cast<double>(spec.height - kBottom), static_cast<double>(kTop)};
+                 static_cast<double>(spec.height - kBottom), static_cast<double>(frame_top)};
   double log_max = 0.0;  // shading scale: ln max|λ| of the most unstable point
   for (std::size_t i = 0; i < nx * ny; ++i) {
     if (spec.ok[i] && !spec.stable[i] && std::isfinite(spec.max_abs_multiplier[i])) {
@@ -70,7 +217,7 @@ std::string RenderRegionSvg(const RegionPlotSpec& spec) {
   s << "</g>\n";
 
   // Frame and ticks.
-  const double left = kLeft, right = spec.width - kRight, top = kTop,
+  const double left = kLeft, right = spec.width - kRight, top = frame_top,
                bottom = spec.height - kBottom;
   s << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << right - left << "\" height=\""
     << bottom - top << "\" fill=\"none\" stroke=\"black\"/>\n";
@@ -99,14 +246,16 @@ std::string RenderRegionSvg(const RegionPlotSpec& spec) {
     << ") rotate(-90)\" text-anchor=\"middle\">" << EscapeSvgText(spec.y_label) << "</text>\n";
 
   // Resonance markers, transition curves, labels (in this order: labels stay readable).
-  for (const RegionPlotMarker& m : spec.markers) {
-    if (m.x < sx.lo || m.x > sx.hi) continue;
-    const double p = sx(m.x);
+  for (std::size_t k = 0; k < markers.size(); ++k) {
+    const double p = marker_px[k];
+    const double baseline = top - kMarkerGap - kMarkerRow * marker_slots[k].row;
     s << "<line x1=\"" << FormatTickNumber(p) << "\" y1=\"" << top << "\" x2=\""
       << FormatTickNumber(p) << "\" y2=\"" << bottom
-      << "\" stroke=\"#555\" stroke-dasharray=\"4,4\"/><text x=\"" << FormatTickNumber(p)
-      << "\" y=\"" << top - 6 << "\" text-anchor=\"middle\" font-size=\"10\">"
-      << EscapeSvgText(m.text) << "</text>\n";
+      << "\" stroke=\"#555\" stroke-dasharray=\"4,4\"/><text x=\""
+      << FormatTickNumber(marker_slots[k].x) << "\" y=\"" << FormatTickNumber(baseline)
+      << "\" text-anchor=\"middle\" font-size=\"" << kMarkerFont << "\""
+      << LengthAttributes(markers[k]->text, kMarkerFont) << " class=\"marker-label\">"
+      << EscapeSvgText(markers[k]->text) << "</text>\n";
   }
   for (const RegionPlotCurve& c : spec.curves) {
     if (c.x.empty()) continue;
@@ -117,12 +266,7 @@ std::string RenderRegionSvg(const RegionPlotSpec& spec) {
     }
     s << "\"/>\n";
   }
-  for (const RegionPlotLabel& l : spec.labels) {
-    s << "<text x=\"" << FormatTickNumber(sx(l.x)) << "\" y=\"" << FormatTickNumber(sy(l.y))
-      << "\" text-anchor=\"middle\" font-weight=\"bold\" stroke=\"white\" stroke-width=\"3\" "
-         "paint-order=\"stroke\">"
-      << EscapeSvgText(l.text) << "</text>\n";
-  }
+  LayOutRegionLabels(spec, sx, sy, TextBox{left, top, right, bottom}, s);
   s << "</svg>\n";
   return s.str();
 }

@@ -1,7 +1,15 @@
 /// @file
 /// @brief A dependency-free SVG stability-chart plot: the grid cells shaded by their verdict
 /// (unstable cells darker with growing max|λ|), the transition curves drawn over them, the
-/// region labels at the regions' centroids and optional dashed resonance markers along x.
+/// region labels inside their regions and optional dashed resonance markers along x.
+///
+/// **Labels never overlap** (label_layout.hpp). Resonance-marker labels go above the frame in
+/// rows: each takes the lowest row where it meets no label already there, and the frame moves
+/// down when more rows are needed. Region labels are placed, largest region first, at the first
+/// of their anchors (best first) where the label's box stays inside the frame and meets no label
+/// placed before; if none fits, at the nearest free position around the first anchor, joined to
+/// it by a thin leader line; if the frame has no room left, the label is omitted and a note at
+/// the bottom says how many were.
 #pragma once
 
 #include <cstdint>
@@ -10,11 +18,20 @@
 
 namespace geardyn::app {
 
-/// A text label at a data point (e.g. "2f_3/1" at a region's centroid).
-struct RegionPlotLabel {
+/// A point in data coordinates.
+struct RegionPlotPoint {
   double x = 0.0;
   double y = 0.0;
+};
+
+/// A region label (e.g. "2f_3/1"), centred on the first free anchor.
+struct RegionPlotLabel {
+  double x = 0.0;  ///< preferred anchor (e.g. the region's most unstable point)
+  double y = 0.0;
   std::string text;
+  /// Further anchors inside the region, best first (tried after (x, y)); their number also
+  /// orders the labels: the one with most anchors is placed first.
+  std::vector<RegionPlotPoint> anchors;
 };
 
 /// A vertical dashed line at x with a label at the top (e.g. a resonance speed).

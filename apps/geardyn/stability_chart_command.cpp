@@ -24,8 +24,8 @@ struct ChartCommandOptions {
   std::string x, y;
   int threads = 0;
   std::string method = "auto";
-  double tolerance = 1e-10;
-  double boundary_tolerance = 1e-5;
+  double tolerance = 1e-6;
+  double boundary_tolerance = 1e-3;
   int max_order = 3;
   bool difference = false;
   bool no_curves = false;
@@ -87,6 +87,8 @@ nlohmann::json MakeChartReport(const SceneChartSettings& settings, const SceneCh
           {"wall_time_s", c.summary.wall_time_s},
           {"counters", c.summary.counters},
           {"model_builds", run.model_builds},
+          {"refined_points", run.refined_points},
+          {"verdict_tolerance", settings.verdict_tolerance},
           {"num_points", c.stable.size()},
           {"num_unstable_points", unstable},
           {"num_undetermined_points", undetermined},
@@ -136,20 +138,25 @@ std::string ChartSvg(const SceneChart& run, const std::string& title) {
   spec.stable = c.stable;
   spec.ok = c.ok;
   for (const TransitionCurve& t : c.curves) spec.curves.push_back({t.x, t.y, t.closed});
-  // Each region's label at its most unstable point (always inside the region).
-  std::vector<int> peak(c.regions.size(), -1);
+  // Each region's label at its most unstable point (always inside the region), or, when that
+  // place is taken, at its next most unstable points (RenderRegionSvg lays them out).
+  std::vector<std::vector<int>> points(c.regions.size());
   for (std::size_t i = 0; i < c.region.size(); ++i) {
-    const int r = c.region[i];
-    if (r >= 0 && (peak[r] < 0 || c.max_abs_multiplier[i] > c.max_abs_multiplier[peak[r]])) {
-      peak[r] = static_cast<int>(i);
-    }
+    if (c.region[i] >= 0) points[c.region[i]].push_back(static_cast<int>(i));
   }
   std::vector<std::string> marked;
+  const int nx = c.x_axis.num_points;
   for (std::size_t r = 0; r < c.regions.size(); ++r) {
-    const int i = peak[r];
-    const int nx = c.x_axis.num_points;
-    spec.labels.push_back(
-        {c.x_axis.Value(i % nx), c.y_axis.Value(i / nx), RegionLabel(c.regions[r])});
+    std::vector<int>& p = points[r];
+    std::stable_sort(p.begin(), p.end(), [&c](int a, int b) {
+      return c.max_abs_multiplier[a] > c.max_abs_multiplier[b];
+    });
+    RegionPlotLabel label{
+        c.x_axis.Value(p[0] % nx), c.y_axis.Value(p[0] / nx), RegionLabel(c.regions[r]), {}};
+    for (std::size_t k = 1; k < p.size(); ++k) {
+      label.anchors.push_back({c.x_axis.Value(p[k] % nx), c.y_axis.Value(p[k] / nx)});
+    }
+    spec.labels.push_back(std::move(label));
     const ChartRegion& g = c.regions[r];
     if (g.labelled && run.speed_axis == "x" && run.mesh_hz_per_rpm > 0.0 &&
         std::find(marked.begin(), marked.end(), g.resonance.label) == marked.end()) {
@@ -263,11 +270,13 @@ Command AddStabilityChartCommand(CLI::App& app) {
                   "Floquet method: auto, exact_steps, magnus, ode_stepper, hill, "
                   "modal_projection or arpack_monodromy (default auto)")
       ->check(CLI::IsMember(methods));
-  cmd->add_option("--tolerance", opts->tolerance, "Floquet error target (default 1e-10)")
+  cmd->add_option("--tolerance", opts->tolerance,
+                  "Floquet error target of every point (default 1e-6; points whose verdict lies "
+                  "within twice the estimate are recomputed at 1e-10)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--boundary-tolerance", opts->boundary_tolerance,
                   "transition-curve bisection tolerance, a fraction of the axis span (default "
-                  "1e-5)")
+                  "1e-3: below a pixel of the SVG's 780-px frame)")
       ->check(CLI::Range(1e-15, 0.5));
   cmd->add_option("--max-order", opts->max_order, "largest resonance order k of the labels (3)")
       ->check(CLI::Range(1, 50));
