@@ -3,6 +3,10 @@
 // eigenvalues only, and gives the same frequencies as the full path with vectors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
 #include "geardyn/analyses/modal.hpp"
 #include "geardyn/models/scene/scene_reader.hpp"
 #include "geardyn/models/system/scene_system.hpp"
@@ -50,6 +54,63 @@ TEST(ModalShortcutTest, DampedModelFrequenciesOnlySkipTheVectorsDense) {
 TEST(ModalShortcutTest, DampedModelFrequenciesOnlySkipTheVectorsArpack) {
   const SystemModel model = MakeSystemModel(LoadScene("builtin:geared-shafts"));
   ExpectShortcutEqualsFullPath(model, ModalMethod::kArpack, 12);
+}
+
+// The dense path with vectors and 0 < num_modes < n computes only those (few-modes solver,
+// symmetric_eigen_subset.hpp): the same frequencies and, up to sign, the same M-orthonormal
+// shapes as the full dense solve (num_modes = 0, all n), the lowest and nearest a shift.
+TEST(ModalShortcutTest, DenseFewModesEqualTheFullSolveOnTheGearedShafts) {
+  const SystemModel model = MakeSystemModel(LoadScene("builtin:geared-shafts"));
+  const int n = model.num_dofs();
+  ModalOptions all;
+  all.method = ModalMethod::kDense;
+  all.compute_shapes = true;
+  const ModalResult full = ComputeModes(model, all);
+  ASSERT_TRUE(full.summary.ok()) << full.summary.message;
+  ASSERT_EQ(full.frequencies_hz.size(), n);
+  const MatrixX M(model.mass());
+  const double top = full.frequencies_hz.maxCoeff();
+  // Shifted window: σ = ω² of mode 40 (0-based) a little above it; the 10 nearest start at 35
+  // or 36 depending on the spectrum, found by the definition (nearest |λ − σ|) on the full one.
+  const double sigma = 1.0001 * full.eigenvalues(40);
+  for (const bool shifted : {false, true}) {
+    ModalOptions few = all;
+    few.num_modes = shifted ? 10 : 20;
+    if (shifted) few.shift = sigma;
+    const ModalResult r = ComputeModes(model, few);
+    ASSERT_TRUE(r.summary.ok()) << r.summary.message;
+    EXPECT_EQ(r.summary.counters.at("subset_solver"), 1);  // the few-modes solver ran
+    ASSERT_EQ(r.frequencies_hz.size(), few.num_modes);
+    ASSERT_EQ(r.shapes.cols(), few.num_modes);
+    // First index of the window in the full spectrum: the definition, evaluated on `full`.
+    Eigen::Index first = 0;
+    if (shifted) {
+      while (first + few.num_modes < n &&
+             std::abs(full.eigenvalues(first + few.num_modes) - sigma) <
+                 std::abs(full.eigenvalues(first) - sigma)) {
+        ++first;
+      }
+      EXPECT_GT(first, 0);
+    }
+    const MatrixX gram = r.shapes.transpose() * M * r.shapes;
+    EXPECT_LE((gram - MatrixX::Identity(few.num_modes, few.num_modes)).cwiseAbs().maxCoeff(),
+              1e-10);
+    for (int k = 0; k < few.num_modes; ++k) {
+      EXPECT_NEAR(r.frequencies_hz(k), full.frequencies_hz(first + k), kTol * top) << "mode " << k;
+      // ‖projection onto the full solve's eigenspace‖²_M = 1: the same shape up to sign, or a
+      // shape inside the same repeated eigenspace (the shafts' bending pairs).
+      double in_space = 0.0;
+      for (const std::vector<int>& group : full.multiplicity_groups) {
+        if (std::find(group.begin(), group.end(), first + k) == group.end()) continue;
+        for (const int j : group) {
+          const double overlap = r.shapes.col(k).dot(M * full.shapes.col(j));
+          in_space += overlap * overlap;
+        }
+      }
+      EXPECT_NEAR(in_space, 1.0, 1e-8) << "mode " << k;
+    }
+    EXPECT_EQ(r.num_rigid_body_modes, shifted ? 0 : full.num_rigid_body_modes);
+  }
 }
 
 }  // namespace

@@ -607,6 +607,15 @@ TEST(ModalOptionsTest, InvalidOptionsThrowNamingTheField) {
   EXPECT_TRUE(o.IsValid(&why));
   o.num_modes = -1;
   EXPECT_THROWS_MESSAGE(ComputeModes(model, o), InvalidInput, "num_modes.*-1");
+  // Upper bound at its edge: n modes are all of them, n + 1 is refused naming n and the value.
+  const int n = model.num_dofs();
+  o = {};
+  o.num_modes = n;
+  EXPECT_EQ(ComputeModes(model, o).frequencies_hz.size(), n);
+  o.num_modes = n + 1;
+  EXPECT_THROWS_MESSAGE(ComputeModes(model, o), InvalidInput,
+                        "num_modes: must be ≤ the number of DOFs " + std::to_string(n) + " .*got " +
+                            std::to_string(n + 1));
   o = {};
   o.shift = std::nan("");
   EXPECT_THROWS_MESSAGE(ComputeModes(model, o), InvalidInput, "shift");

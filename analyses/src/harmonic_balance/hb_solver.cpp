@@ -49,6 +49,94 @@ std::string FormatG(double x) {
   return os.str();
 }
 
+// A mesh frequency in a warning [Hz]: 6 significant digits ("3287.5", not "3.29e+03").
+std::string FormatHz(double f) {
+  std::ostringstream os;
+  os << std::setprecision(6) << f;
+  return os.str();
+}
+
+// Per-point warnings that a sweep merges (MergePointWarnings): "harmonic balance at <f_m> Hz: "
+// then a body that starts with the varying number (undamped share [%], or 1/cond).
+std::string PointWarningPrefix(double f_m) {
+  return "harmonic balance at " + FormatHz(f_m) + " Hz: ";
+}
+constexpr const char* kUndampedShareText =
+    " % of the alternating response (mass-weighted) is in an undamped mode of the mean system";
+constexpr const char* kIllConditionedText = "ill-conditioned solve (estimated 1/cond ";
+
+// One warning per distinct per-point warning of a sweep instead of one per point: the varying
+// number (undamped share, 1/cond) is reduced to its worst, and the mesh-frequency range where the
+// warning occurred is given. A warning of a single point is kept as the point gave it; warnings
+// without the per-point prefix are kept once each (exact text), in order of first appearance.
+std::vector<std::string> MergePointWarnings(const std::vector<HbResult>& points) {
+  struct Merged {
+    std::string key, first;  // the body without its leading number; the first point's text
+    bool share = false;      // undamped share (max) or 1/cond (min)
+    double worst = 0.0, lo = 0.0, hi = 0.0;
+    int count = 0;
+  };
+  std::vector<Merged> merged;
+  for (const HbResult& point : points) {
+    const std::string prefix = PointWarningPrefix(point.mesh_frequency_hz);
+    for (const std::string& w : point.summary.warnings) {
+      std::string key = w;
+      bool share = false, numbered = false;
+      double value = 0.0;
+      if (w.rfind(prefix, 0) == 0) {
+        const std::string body = w.substr(prefix.size());
+        const std::size_t at = body.find(kUndampedShareText);
+        const std::string ill = kIllConditionedText;
+        if (at != std::string::npos && at > 0) {
+          share = numbered = true;
+          value = std::stod(body.substr(0, at));
+          key = body.substr(at);
+        } else if (body.rfind(ill, 0) == 0) {
+          numbered = true;
+          value = std::stod(body.substr(ill.size()));
+          key = ill;
+        } else {
+          key = body;
+          numbered = true;  // a per-point text without a number: merged by its body
+        }
+      }
+      auto it =
+          std::find_if(merged.begin(), merged.end(), [&](const Merged& m) { return m.key == key; });
+      if (it == merged.end()) {
+        merged.push_back({key, w, share, value, point.mesh_frequency_hz, point.mesh_frequency_hz,
+                          numbered ? 1 : 0});
+        continue;
+      }
+      if (!numbered) continue;
+      ++it->count;
+      it->worst = share ? std::max(it->worst, value) : std::min(it->worst, value);
+      it->lo = std::min(it->lo, point.mesh_frequency_hz);
+      it->hi = std::max(it->hi, point.mesh_frequency_hz);
+    }
+  }
+  std::vector<std::string> out;
+  for (const Merged& m : merged) {
+    if (m.count <= 1) {
+      out.push_back(m.first);
+      continue;
+    }
+    std::string text = "harmonic balance at f_m = " + FormatHz(m.lo) + " … " + FormatHz(m.hi) +
+                       " Hz (" + std::to_string(m.count) + " of " + std::to_string(points.size()) +
+                       " points): ";
+    if (m.key.rfind(kIllConditionedText, 0) == 0) {
+      text += "ill-conditioned solves (estimated 1/cond down to " + FormatG(m.worst) +
+              "): expect to lose up to about " + FormatG(std::round(-std::log10(m.worst))) +
+              " digits";
+    } else if (m.share) {
+      text += "up to " + FormatG(m.worst) + m.key;
+    } else {
+      text += m.key;
+    }
+    out.push_back(std::move(text));
+  }
+  return out;
+}
+
 // Scatters Gᵀ X2 G of a mesh (X2 2×2 real) into triplets.
 void ScatterMesh(const SystemMesh& mesh, const Matrix2& X2,
                  std::vector<Eigen::Triplet<double>>* t) {
@@ -393,9 +481,7 @@ void HarmonicBalanceSolver::Impl::CheckUndampedShare(const HbSetup& s, const Mat
     const double share = modal.row(i).squaredNorm() / total;
     if (share > kUndampedShare) {
       out->warnings.push_back(
-          "harmonic balance at " + FormatG(f_m) + " Hz: " + FormatG(100.0 * share) +
-          " % of the alternating response (mass-weighted) is in an undamped mode of the mean "
-          "system (" +
+          PointWarningPrefix(f_m) + FormatG(100.0 * share) + kUndampedShareText + " (" +
           FormatG(undamped.freq_hz(i)) + " Hz, modal damping ratio " + FormatG(undamped.zeta(i)) +
           "): its amplitude is set by the truncation, not by damping; add damping (bearings, "
           "system modal/Rayleigh damping) before trusting it");
@@ -593,8 +679,7 @@ HbResult HarmonicBalanceSolver::Impl::SolveFixed(int H, double f_m) {
         "(estimated 1/cond " +
         FormatG(rcond) + "): an undamped resonance at " + std::to_string(f_m) + " Hz?";
   } else if (rcond < kWarnRcond) {
-    result.summary.warnings.push_back("harmonic balance at " + FormatG(f_m) +
-                                      " Hz: ill-conditioned solve (estimated 1/cond " +
+    result.summary.warnings.push_back(PointWarningPrefix(f_m) + kIllConditionedText +
                                       FormatG(rcond) + "): expect to lose about " +
                                       FormatG(std::round(-std::log10(rcond))) + " digits");
   }
@@ -712,15 +797,8 @@ HbSweepResult SweepHarmonicBalance(const SystemModel& model,
     }
     if (progress) progress(i + 1, total);
   }
-  // Every distinct warning of the points, in order of first appearance.
-  for (const HbResult& point : sweep.points) {
-    for (const std::string& w : point.summary.warnings) {
-      if (std::find(sweep.summary.warnings.begin(), sweep.summary.warnings.end(), w) ==
-          sweep.summary.warnings.end()) {
-        sweep.summary.warnings.push_back(w);
-      }
-    }
-  }
+  // Every distinct warning of the points once, with the frequency range of per-point ones.
+  sweep.summary.warnings = MergePointWarnings(sweep.points);
   sweep.summary.counters["points"] = total;
   sweep.summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

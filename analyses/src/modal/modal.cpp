@@ -202,6 +202,10 @@ ModalResult ComputeModes(const SystemModel& model, const ModalOptions& options) 
   if (!options.IsValid(&why)) throw InvalidInput(why);
   const int n = model.num_dofs();
   GEARDYN_THROW_UNLESS(n > 0, "model: has no DOFs (build it with SystemBuilder)");
+  // A system of n DOFs has n modes: more cannot be computed (0 = all).
+  GEARDYN_THROW_UNLESS(options.num_modes <= n,
+                       "ModalOptions.num_modes: must be ≤ the number of DOFs "
+                           << n << " (0 = all), got " << options.num_modes);
 
   ModalResult result;
   Summary& summary = result.summary;

@@ -30,9 +30,15 @@
 #include "geardyn/common/errors.hpp"
 #include "geardyn/common/units.hpp"
 #include "support/expect_throws.hpp"
+#include "support/pencils.hpp"
 
 namespace geardyn {
 namespace {
+
+using test::FromTriplets;
+using test::MakeChain;
+using test::MakeRandomBanded;
+using test::Pencil;
 
 // Dense symmetric eigenvalues are backward stable: |δλ| ≤ c·n·ε·λ_max (Golub & Van Loan §8.1).
 constexpr double kDenseTol = 1e-13;  // × λ_max, n ≤ 50
@@ -42,37 +48,6 @@ constexpr double kArpackTol = 1e-10;  // × λ
 // amplified by the condition of the shifted solves.
 constexpr double kResidualTol = 1e-9;
 constexpr double kOrthoTol = 1e-9;
-
-struct Pencil {
-  SparseMatrix K;  // [N/m]
-  SparseMatrix M;  // [kg]
-};
-
-void AddSpring(std::vector<Eigen::Triplet<double>>* t, int i, int j, double k) {
-  t->emplace_back(i, i, k);
-  t->emplace_back(j, j, k);
-  t->emplace_back(i, j, -k);
-  t->emplace_back(j, i, -k);
-}
-
-SparseMatrix FromTriplets(int n, const std::vector<Eigen::Triplet<double>>& t) {
-  SparseMatrix A(n, n);
-  A.setFromTriplets(t.begin(), t.end());
-  A.makeCompressed();
-  return A;
-}
-
-/// Chain of n masses m [kg] and springs k [N/m]; fixed ends add a ground spring at both ends.
-Pencil MakeChain(int n, double k, double m, bool fixed_ends) {
-  std::vector<Eigen::Triplet<double>> kt, mt;
-  for (int i = 0; i + 1 < n; ++i) AddSpring(&kt, i, i + 1, k);
-  if (fixed_ends) {
-    kt.emplace_back(0, 0, k);
-    kt.emplace_back(n - 1, n - 1, k);
-  }
-  for (int i = 0; i < n; ++i) mt.emplace_back(i, i, m);
-  return {FromTriplets(n, kt), FromTriplets(n, mt)};
-}
 
 // 1 − cos θ is evaluated as 2 sin²(θ/2): for θ ~ 1e-3 the difference form loses 6 digits.
 double FixedChainLambda(int j, int n, double k, double m) {
@@ -111,29 +86,6 @@ double ConsistentRodLambda(int j, int N, double E, double rho, double length) {
   const double h = length / N, theta = j * kPi / N;
   const double s = std::sin(0.5 * theta);
   return 6.0 * E / (rho * h * h) * (2.0 * s * s) / (2.0 + std::cos(theta));
-}
-
-/// Seeded random banded system with one rigid mode: springs k·U(0.5, 1.5) [N/m] between every
-/// pair at distance 1..bandwidth (connected, floating: K·1 = 0), lumped masses m·U(0.5, 2) plus a
-/// consistent coupling μ/6·[2 1; 1 2] between neighbours [kg] (M banded SPD).
-Pencil MakeRandomBanded(int n, int bandwidth, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const double k = 2.0e7, m = 1.5;
-  std::vector<Eigen::Triplet<double>> kt, mt;
-  for (int i = 0; i < n; ++i) {
-    for (int d = 1; d <= bandwidth && i + d < n; ++d)
-      AddSpring(&kt, i, i + d, k * (0.5 + unit(rng)));
-  }
-  for (int i = 0; i < n; ++i) mt.emplace_back(i, i, m * (0.5 + 1.5 * unit(rng)));
-  for (int i = 0; i + 1 < n; ++i) {
-    const double mu = 0.3 * m * unit(rng) / 6.0;
-    mt.emplace_back(i, i, 2.0 * mu);
-    mt.emplace_back(i + 1, i + 1, 2.0 * mu);
-    mt.emplace_back(i, i + 1, mu);
-    mt.emplace_back(i + 1, i, mu);
-  }
-  return {FromTriplets(n, kt), FromTriplets(n, mt)};
 }
 
 int CountExactZeros(const VectorX& v) { return static_cast<int>((v.array() == 0.0).count()); }

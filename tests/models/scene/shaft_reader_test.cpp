@@ -8,35 +8,15 @@
 #include <vector>
 
 #include "geardyn/models/scene/scene_reader.hpp"
+#include "support/scene_text.hpp"
 
 namespace geardyn {
 namespace {
 
-// A spur pair on two shafts (one of two sections), bearings at stations, a torsional coupling
-// from the input shaft to a motor shaft, and system damping. Every table header line is unique.
-constexpr std::string_view kBase = R"(title = "shafts"
-
-[[gear]]  # pinion
-name = "pinion"
-teeth = 20
-normal_module = 0.002
-face_width = 0.02
-mass = 0.5
-inertia = 1e-4
-
-[[gear]]  # wheel
-name = "wheel"
-teeth = 40
-normal_module = 0.002
-face_width = 0.02
-mass = 2.0
-inertia = 1.6e-3
-
-[[mesh]]  # pinion-wheel
-pinion = "pinion"
-gear = "wheel"
-
-[[shaft]]  # input
+// The spur pair of support/scene_text.hpp on two shafts (one of two sections), bearings at
+// stations, a torsional coupling from the input shaft to a motor shaft, and system damping. Every
+// table header line is unique.
+const std::string kBase = test::SpurPairScene("shafts", R"([[shaft]]  # input
 name = "input"
 youngs_modulus = 2.1e11
 poisson_ratio = 0.3
@@ -89,24 +69,10 @@ torque = 50
 
 [damping]
 modal_ratio = 0.02
-)";
+)");
 
-std::string Replace(std::string_view text, std::string_view from, std::string_view to) {
-  std::string s(text);
-  const std::size_t pos = s.find(from);
-  if (pos == std::string::npos) {
-    ADD_FAILURE() << "test setup: '" << from << "' not found";
-    return s;
-  }
-  return s.replace(pos, from.size(), to);
-}
-
-int LineOf(std::string_view text, std::string_view needle) {
-  const std::size_t pos = text.find(needle);
-  if (pos == std::string_view::npos) return -1;
-  return 1 +
-         static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
-}
+using test::LineOf;
+using test::Replace;
 
 TEST(ShaftReaderTest, ReadsSectionsMaterialStationsAndNodes) {
   const Scene s = ParseScene(kBase, "t.toml");

@@ -11,7 +11,7 @@
 /// copied into ModalResult::method_used:
 /// | options.method | n = num_dofs | used |
 /// |---|---|---|
-/// | kDense | any | kDense (all n modes, then truncated to num_modes if > 0) |
+/// | kDense | any | kDense (all n modes; with vectors and 0 < num_modes < n only those, by the few-modes dense solver of symmetric_eigen_subset.hpp) |
 /// | kArpack | n ≥ 3 and num_modes' < n | kArpack (num_modes' = num_modes or 20) |
 /// | kArpack | n too small for ARPACK (it needs num_modes < ncv ≤ n) | kDense + a warning |
 /// | kAuto | n ≤ dense_max_dofs, num_modes' ≥ n/2, or n too small for ARPACK | kDense |
@@ -169,10 +169,12 @@ inline constexpr int kDenseDampingTestMaxDofs = 2000;
 struct ModalOptions {
   ModalMethod method = ModalMethod::kAuto;  ///< solver path (kAuto: see the file comment)
   /// Number of modes wanted (the lowest, or the nearest `shift` with ARPACK); 0 → all for the
-  /// dense path, kDefaultArpackModes for ARPACK. ≥ 0.
+  /// dense path, kDefaultArpackModes for ARPACK. In [0, n] (n = the model's DOFs; checked by
+  /// ComputeModes, which throws InvalidInput above n).
   int num_modes = 0;
-  /// ARPACK shift σ [rad²/s²]: the num_modes eigenvalues nearest σ. nullopt → slightly below 0
-  /// (the lowest modes, rigid-body ones first). Ignored by the dense path. Finite.
+  /// Shift σ [rad²/s²]: the num_modes eigenvalues nearest σ (both paths; the dense one ignores
+  /// it when num_modes = 0). nullopt → the lowest modes, rigid-body ones first (ARPACK: σ slightly
+  /// below 0). Finite.
   std::optional<double> shift;
   /// kAuto: dense when num_dofs ≤ dense_max_dofs. ≥ 1.
   int dense_max_dofs = kDefaultDenseMaxDofs;
