@@ -61,6 +61,11 @@ ModalOptions MakeModesOptions(const ModesSettings& settings, int num_dofs) {
         false, "--method: must be auto, dense or arpack, got '" << settings.method << "'");
   }
   options.num_modes = settings.num_modes >= num_dofs ? 0 : settings.num_modes;
+  // All modes: only the dense solver gives them (ARPACK needs num_modes < n − 1, and kAuto would
+  // read 0 as its default count).
+  if (options.num_modes == 0 && options.method == ModalMethod::kAuto) {
+    options.method = ModalMethod::kDense;
+  }
   options.compute_energy_fractions = true;
   options.compute_shapes = settings.shapes;
   options.compute_damped = settings.damped;

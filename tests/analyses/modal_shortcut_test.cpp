@@ -113,5 +113,40 @@ TEST(ModalShortcutTest, DenseFewModesEqualTheFullSolveOnTheGearedShafts) {
   }
 }
 
+// The geared shafts with 50 elements per shaft (612 DOFs) have repeated bending frequencies (the
+// two bending planes of an axisymmetric shaft). Lanczos can return such a pair once (found at
+// 3208 Hz) and the next mode in its place with info = 0. Truth: the full dense solve. Forced
+// ARPACK either returns the dense spectrum or reports the miss (Sylvester inertia count); kAuto
+// always returns the dense spectrum (it re-solves densely after a miss).
+TEST(ModalShortcutTest, ArpackNeverReturnsAMissedRepeatedModeAsSuccess) {
+  const SystemModel model =
+      MakeSystemModel(LoadScene("builtin:geared-shafts", {"shaft.input.sections.0.elements=50",
+                                                          "shaft.output.sections.0.elements=50"}));
+  ModalOptions all;
+  all.method = ModalMethod::kDense;
+  all.compute_energy_fractions = false;
+  const ModalResult dense = ComputeModes(model, all);
+  ASSERT_TRUE(dense.summary.ok()) << dense.summary.message;
+  const int wanted = 20;
+  const double top = dense.frequencies_hz(wanted - 1);
+  for (const ModalMethod method : {ModalMethod::kArpack, ModalMethod::kAuto}) {
+    ModalOptions few = all;
+    few.method = method;
+    few.num_modes = wanted;
+    const ModalResult r = ComputeModes(model, few);
+    const bool forced = method == ModalMethod::kArpack;
+    if (!r.summary.ok()) {
+      EXPECT_TRUE(forced) << "kAuto must fall back to the dense solver: " << r.summary.message;
+      EXPECT_NE(r.summary.message.find("Lanczos missed"), std::string::npos) << r.summary.message;
+      continue;
+    }
+    ASSERT_EQ(r.frequencies_hz.size(), wanted);
+    for (int k = 0; k < wanted; ++k) {
+      EXPECT_NEAR(r.frequencies_hz(k), dense.frequencies_hz(k), 1e-8 * top)
+          << "mode " << k << (forced ? " (arpack)" : " (auto)");
+    }
+  }
+}
+
 }  // namespace
 }  // namespace geardyn

@@ -174,6 +174,69 @@ LanczosOutcome RunShiftInvertLanczos(const Op& op, const MassOp& mass, int nev, 
   return outcome;
 }
 
+/// Number of eigenvalues of the pencil (K, M) below τ, M positive definite: the negative pivots of
+/// the LDLᵀ factorization of K − τM (Sylvester's law of inertia; Parlett, The Symmetric Eigenvalue
+/// Problem, 1998, §3.3). −1 when the factorization fails (a zero or non-finite pivot: τ on an
+/// eigenvalue).
+long CountEigenvaluesBelow(const SparseMatrix& K, const SparseMatrix& M, double tau) {
+  const SparseMatrix shifted = K - tau * M;
+  const Eigen::SimplicialLDLT<SparseMatrix> ldlt(shifted);
+  if (ldlt.info() != Eigen::Success) return -1;
+  const VectorX d = ldlt.vectorD();
+  if (!d.allFinite() || (d.array() == 0.0).any()) return -1;
+  return static_cast<long>((d.array() < 0.0).count());
+}
+
+/// Number of eigenvalues of (K, M) with |λ − σ| < r, from two inertia counts; −1 when a
+/// factorization failed twice (τ nudged by 1e-7 between the tries).
+long CountEigenvaluesInWindow(const SparseMatrix& K, const SparseMatrix& M, double sigma,
+                              double radius) {
+  long above = CountEigenvaluesBelow(K, M, sigma + radius);
+  if (above < 0) above = CountEigenvaluesBelow(K, M, sigma + radius * (1.0 - 1e-7));
+  long below = CountEigenvaluesBelow(K, M, sigma - radius);
+  if (below < 0) below = CountEigenvaluesBelow(K, M, sigma - radius * (1.0 - 1e-7));
+  if (above < 0 || below < 0) return -1;
+  return above - below;
+}
+
+/// Lanczos from one start vector sees one direction per eigenspace, so ARPACK can return a
+/// repeated eigenvalue once and the next eigenvalue in its place, with info = 0. The returned set
+/// is the "nearest σ" set |λ − σ| ≤ r; every eigenvalue of the pencil strictly inside it, at
+/// |λ − σ| < r(1 − δ), must have been returned. This compares the inertia count of that window
+/// with the returned values in it (counter "inertia_count") and sets status kNumericalIssue when
+/// the pencil has more (counter "missed_eigenvalues"). The band r(1 − δ) … r holds the values
+/// that tie with the farthest one returned: keeping some copies of a repeated eigenvalue at the
+/// edge is a legitimate truncation, not a miss. Successful results only.
+void CheckNoEigenvalueMissed(const SparseMatrix& K, const SparseMatrix& M, double tol,
+                             GeneralizedEigenResult* result) {
+  Summary& summary = result->summary;
+  const VectorX& values = result->eigenvalues;
+  if (summary.status != Status::kSuccess || values.size() == 0) return;
+  const VectorX distance = (values.array() - result->sigma).abs();
+  // ARPACK's Ritz values are accurate to about tol·|λ| (tol = 0: machine precision).
+  const double margin = std::max(1e-6, 100.0 * tol);
+  const double inner = distance.maxCoeff() * (1.0 - margin);
+  const long returned = static_cast<long>((distance.array() < inner).count());
+  const long count = CountEigenvaluesInWindow(K, M, result->sigma, inner);
+  summary.counters["inertia_count"] = count;
+  if (count < 0) {
+    summary.warnings.push_back(
+        "ARPACK: the inertia check of the returned modes could not factorize K − τM; the "
+        "modes are not checked for a missed repeated eigenvalue");
+    return;
+  }
+  if (count > returned) {
+    std::ostringstream out;
+    out << "ARPACK returned " << returned << " eigenvalues with |λ − σ| < " << inner
+        << " rad²/s² (σ = " << result->sigma << "), but the pencil has " << count
+        << " there (Sylvester inertia of K − τM): Lanczos missed " << count - returned
+        << " repeated or clustered eigenvalue(s); use the dense solver";
+    summary.status = Status::kNumericalIssue;
+    summary.message = out.str();
+    summary.counters["missed_eigenvalues"] = count - returned;
+  }
+}
+
 #endif  // GEARDYN_WITH_ARPACK
 
 }  // namespace
@@ -261,6 +324,7 @@ GeneralizedEigenResult SolveGeneralizedEigenArpack(const SparseMatrix& K, const 
                                  VectorX(K.diagonal()), /*rigid_count=*/-1, options.zero_tol,
                                  "ARPACK shift-invert Lanczos", &result);
     if (!options.compute_vectors) result.vectors.resize(0, 0);
+    CheckNoEigenvalueMissed(K, M, options.tol, &result);
     // An indefinite K − σM at σ < 0 means the pencil has an eigenvalue below σ: K is not PSD,
     // even if that eigenvalue is not among the ones nearest σ.
     if (result.sigma < 0.0 && options.factorization != ShiftFactorization::kLu &&

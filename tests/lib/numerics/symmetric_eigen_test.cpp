@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -453,6 +454,77 @@ TEST(SymmetricEigenArpackTest, ResultsAreReproducibleAndVectorsOptional) {
   EXPECT_EQ(c.vectors.size(), 0);
   EXPECT_LE((c.eigenvalues - a.eigenvalues).cwiseAbs().maxCoeff(),
             1e-12 * a.eigenvalues.cwiseAbs().maxCoeff());
+}
+
+// Two uncoupled identical chains: every eigenvalue of the fixed chain (closed form) is double.
+// Lanczos from one start vector sees one direction of each two-dimensional eigenspace, so ARPACK
+// can return each value once and the next ones in their place with info = 0. The truth: the
+// lowest 2m eigenvalues are λ_1, λ_1, λ_2, λ_2, … Either ARPACK returns exactly those, or the
+// inertia count (Sylvester) flags the result; never a wrong set with status success.
+TEST(SymmetricEigenArpackTest, MissedRepeatedEigenvaluesAreFlaggedByTheInertiaCount) {
+  const int n = 150, modes = 8;
+  const double k = 3.7e5, m = 2.3;
+  const Pencil one = MakeChain(n, k, m, /*fixed_ends=*/true);
+  std::vector<Eigen::Triplet<double>> kt, mt;
+  for (int copy = 0; copy < 2; ++copy) {
+    for (int c = 0; c < n; ++c) {
+      for (SparseMatrix::InnerIterator it(one.K, c); it; ++it) {
+        kt.emplace_back(copy * n + it.row(), copy * n + it.col(), it.value());
+      }
+      for (SparseMatrix::InnerIterator it(one.M, c); it; ++it) {
+        mt.emplace_back(copy * n + it.row(), copy * n + it.col(), it.value());
+      }
+    }
+  }
+  const SparseMatrix K = FromTriplets(2 * n, kt), M = FromTriplets(2 * n, mt);
+  const GeneralizedEigenResult r = SolveGeneralizedEigenArpack(K, M, modes);
+  ASSERT_EQ(r.summary.counters.count("inertia_count"), 1u) << r.summary.BriefReport();
+  if (r.summary.status == Status::kSuccess) {
+    ASSERT_EQ(r.eigenvalues.size(), modes);
+    for (int i = 0; i < modes; ++i) {
+      const double exact = FixedChainLambda(i / 2 + 1, n, k, m);
+      EXPECT_NEAR(r.eigenvalues(i), exact, kArpackTol * exact) << "i = " << i;
+    }
+  } else {
+    EXPECT_EQ(r.summary.status, Status::kNumericalIssue);
+    EXPECT_GT(r.summary.counters.at("missed_eigenvalues"), 0);
+    EXPECT_NE(r.summary.message.find("Lanczos missed"), std::string::npos) << r.summary.message;
+  }
+}
+
+// A triple eigenvalue cut by the requested count (lowest 8 of 1,1,1,2,2,2,3,3,3,… ×10⁶, M = I:
+// the closed form of a diagonal pencil) is a legitimate truncation: success, not a "miss".
+TEST(SymmetricEigenArpackTest, RepeatedEigenvalueAtTheEdgeOfTheSetIsNotAMiss) {
+  const int n = 300, modes = 8;
+  std::vector<Eigen::Triplet<double>> kt, mt;
+  for (int i = 0; i < n; ++i) {
+    kt.emplace_back(i, i, 1e6 * (1 + i / 3));
+    mt.emplace_back(i, i, 1.0);
+  }
+  const GeneralizedEigenResult r =
+      SolveGeneralizedEigenArpack(FromTriplets(n, kt), FromTriplets(n, mt), modes);
+  ASSERT_TRUE(r.summary.ok()) << r.summary.BriefReport();
+  ASSERT_EQ(r.eigenvalues.size(), modes);
+  for (int i = 0; i < modes; ++i) {
+    EXPECT_NEAR(r.eigenvalues(i), 1e6 * (1 + i / 3), kArpackTol * 1e6 * 3) << "i = " << i;
+  }
+}
+
+// The inertia count agrees with the closed form when nothing is repeated: success, and the count
+// equals the number of modes returned.
+TEST(SymmetricEigenArpackTest, InertiaCountEqualsTheModesReturnedWithoutRepeats) {
+  const int n = 300, modes = 12;
+  const Pencil p = MakeChain(n, 2.0e6, 1.5, /*fixed_ends=*/true);
+  for (const bool shifted : {false, true}) {
+    const std::optional<double> sigma =
+        shifted ? std::optional<double>(0.5 * (FixedChainLambda(40, n, 2.0e6, 1.5) +
+                                               FixedChainLambda(41, n, 2.0e6, 1.5)))
+                : std::nullopt;
+    const GeneralizedEigenResult r = SolveGeneralizedEigenArpack(p.K, p.M, modes, sigma);
+    ASSERT_TRUE(r.summary.ok()) << r.summary.BriefReport();
+    // The strict interior of the window holds every returned value but the farthest.
+    EXPECT_EQ(r.summary.counters.at("inertia_count"), modes - 1) << "shifted = " << shifted;
+  }
 }
 
 #else  // !GEARDYN_WITH_ARPACK
