@@ -23,11 +23,16 @@ NhbSolver::Impl::Impl(NhbProblem problem_in, const NhbOptions& options_in, int h
   p = options.period_multiple;
   {
     const bool has_form = problem.law->PiecewiseLinearForm(&form);
-    exact = options.force_integration == NhbForceIntegration::kExact ||
-            (options.force_integration == NhbForceIntegration::kAuto && has_form);
-    GEARDYN_THROW_UNLESS(!exact || has_form,
+    // The projected form (slice meshes) when the separable one is not given.
+    const bool has_projected = !has_form && problem.law->ProjectedForm(p, &pform);
+    exact =
+        options.force_integration == NhbForceIntegration::kExact ||
+        (options.force_integration == NhbForceIntegration::kAuto && (has_form || has_projected));
+    GEARDYN_THROW_UNLESS(!exact || has_form || has_projected,
                          "force_integration: exact integration needs a law with a "
-                         "piecewise-linear form (NhbNonlinearLaw::PiecewiseLinearForm)");
+                         "piecewise-linear form (NhbNonlinearLaw::PiecewiseLinearForm or "
+                         "ProjectedForm)");
+    projected = exact && !has_form;
   }
   S = NhbSolver::SamplesFor(options, H, exact);
   m = n * (2 * H + 1);
@@ -61,7 +66,18 @@ NhbSolver::Impl::Impl(NhbProblem problem_in, const NhbOptions& options_in, int h
     const VectorX probe_phase = VectorX::Zero(1);
     has_switch_function = problem.law->SwitchFunction(probe_u, probe_phase, probe_v);
   }
-  if (exact) {
+  if (projected) {
+    GEARDYN_THROW_UNLESS(pform.linear.rows() == n && pform.linear.cols() == n,
+                         "law: projected form: linear part is not " << n << "×" << n);
+    for (const NhbProjectedTerm& t : pform.terms) {
+      GEARDYN_THROW_UNLESS(t.direction.size() == n && t.breakpoints.size() >= 1 &&
+                               t.weights.size() == t.breakpoints.size() &&
+                               t.ramp_slopes.size() == t.ramp_points.size() &&
+                               t.ramp_sides.size() == t.ramp_points.size(),
+                           "law: projected form: term sizes do not match (n = " << n << ")");
+    }
+    u_slope.resize(n, S);
+  } else if (exact) {
     const size_t count = static_cast<size_t>(n);
     GEARDYN_THROW_UNLESS(
         form.modulation.rows() == n && form.modulation.cols() >= 1 && form.slope.size() == n &&

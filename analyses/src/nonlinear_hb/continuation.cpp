@@ -160,10 +160,15 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   std::vector<double> history_s{0.0};
   bool tangent_predictor = false;  // after a rejected step: the first-order predictor
   while (static_cast<int>(curve.points.size()) < c.max_points) {
+    // The step taken: ds, capped so that the predicted |ΔΩ| ≤ max_omega_step.
+    double step = ds;
+    if (c.max_omega_step > 0 && std::abs(t[m]) * so * step > c.max_omega_step) {
+      step = c.max_omega_step / (std::abs(t[m]) * so);
+    }
     if (smooth && history.size() == kPredictorNodes && !tangent_predictor) {
       // Cubic extrapolation in arclength through the last four points (error O(ds⁴) instead
       // of the tangent's O(ds²): the chord corrector then needs a correction or two).
-      const double target = history_s.back() + ds;
+      const double target = history_s.back() + step;
       VectorX y = VectorX::Zero(m + 1);
       for (size_t j = 0; j < kPredictorNodes; ++j) {
         double w = 1.0;
@@ -175,8 +180,8 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
       xp = y.head(m);
       op_predicted = y[m];
     } else {
-      xp = x + ds * sx * t.head(m);
-      op_predicted = omega + ds * so * t[m];
+      xp = x + step * sx * t.head(m);
+      op_predicted = omega + step * so * t[m];
     }
     const double op = op_predicted;
     xc = xp;
@@ -279,13 +284,13 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
       const double cosang = std::clamp(t_new.dot(t), -1.0, 1.0);
       // The curvature limit is a quality control, not a convergence condition: below
       // 1000·min_step a converged point is kept even at a sharp turn (a kink of the AFT curve).
-      if (std::acos(cosang) > c.max_tangent_angle && ds > 1e3 * c.min_step) accept = false;
+      if (std::acos(cosang) > c.max_tangent_angle && step > 1e3 * c.min_step) accept = false;
     }
     if (!accept) {
       ++rejected;
       tangent_predictor = true;
       if (smooth) factor_at_accepted();  // the sampled path factorises every iterate anyway
-      ds *= 0.5;
+      ds = 0.5 * step;
       if (ds < c.min_step) {
         curve.summary.status = Status::kNotConverged;
         curve.summary.message =
@@ -316,7 +321,7 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
       break;
     }
     record(x, omega, it + 1, res);
-    steps.push_back(ds);
+    steps.push_back(step);
     // Chord iterations (smooth residual) contract linearly: one more correction is normal.
     const int extra = smooth ? 1 : 0;
     if (it <= 1 + extra) ds = std::min(ds * 1.5, c.max_step);

@@ -19,30 +19,56 @@ constexpr double kAngleTolerance = 4e-16 * kTwoPi;
 
 }  // namespace
 
+void NhbSolver::Impl::EvaluatePolynomial(const VectorXc& c, double theta, double out[3]) const {
+  // v = c_0 + 2 Re Σ c_k z^k, v′ = 2 Re Σ ik c_k z^k, v″ = −2 Re Σ k² c_k z^k, z = e^{iθ}.
+  const std::complex<double> z = std::polar(1.0, theta);
+  std::complex<double> zk = 1.0;
+  double value = c[0].real(), slope = 0.0, curvature = 0.0;
+  for (int k = 1; k <= H; ++k) {
+    zk *= z;
+    const std::complex<double> term = c[k] * zk;
+    value += 2.0 * term.real();
+    slope -= 2.0 * k * term.imag();
+    curvature -= 2.0 * k * k * term.real();
+  }
+  out[0] = value;
+  out[1] = slope;
+  out[2] = curvature;
+}
+
 void NhbSolver::Impl::FindSuperlevelSet(const VectorX& x, int i, double level) {
+  poly.resize(H + 1);
+  poly[0] = x[Re(0, i)];
+  for (int k = 1; k <= H; ++k) poly[k] = std::complex<double>(x[Re(k, i)], x[Im(k, i)]);
+  poly_values = u.row(i).transpose();
+  poly_slopes = u_slope.row(i).transpose();
+  FindPolynomialSuperlevelSet(level);
+}
+
+void NhbSolver::Impl::FindPolynomialSuperlevelSet(double level) {
   const double h = kTwoPi / S;
   auto f = [&](double theta, double* slope) {
     double d[3];
-    EvaluateCoordinate(x, i, theta, d);
+    EvaluatePolynomial(poly, theta, d);
     *slope = d[1];
     return d[0] - level;
   };
   auto df = [&](double theta, double* slope) {
     double d[3];
-    EvaluateCoordinate(x, i, theta, d);
+    EvaluatePolynomial(poly, theta, d);
     *slope = d[2];
     return d[1];
   };
   crossings.clear();
   double amplitude = 0.0;  // ≥ ‖u − U₀‖∞
-  for (int k = 1; k <= H; ++k) amplitude += 2.0 * std::hypot(x[Re(k, i)], x[Im(k, i)]);
+  for (int k = 1; k <= H; ++k) amplitude += 2.0 * std::abs(poly[k]);
   const double hH = h * H;
   const double hermite_error_bound = 2.0 * hH * hH * hH * hH / 384.0 * amplitude;  // 2× margin
   for (int s = 0; s < S; ++s) {
     const int s1 = (s + 1) % S;
     const double a = h * s, b = a + h;
-    const double fa = u(i, s) - level, fb = u(i, s1) - level;
-    const double da = u_slope(i, s), db = u_slope(i, s1);
+    const double fa = poly_values[s] - level, fb = poly_values[s1] - level;
+    const double da = poly_slopes[s], db = poly_slopes[s1];
     if ((fa > 0) != (fb > 0)) {
       // Start at the zero of the Hermite cubic of the sample values and slopes (O(h⁴) off).
       const double start = a + h * internal::HermiteCubic(fa, h * da, fb, h * db).Zero();
@@ -70,7 +96,7 @@ void NhbSolver::Impl::FindSuperlevelSet(const VectorX& x, int i, double level) {
   }
   intervals.clear();
   if (crossings.empty()) {
-    if (u(i, 0) > level) intervals.emplace_back(0.0, kTwoPi);
+    if (poly_values[0] > level) intervals.emplace_back(0.0, kTwoPi);
     return;
   }
   // Pair each entry with the next exit, cyclically (the crossings are in θ order).
@@ -94,11 +120,7 @@ void NhbSolver::Impl::FindSuperlevelSet(const VectorX& x, int i, double level) {
   if (open) intervals.emplace_back(start, crossings[first].first + kTwoPi);
 }
 
-void NhbSolver::Impl::IntegrateExactly(const VectorX& x) {
-  using C = std::complex<double>;
-  const int P = kappa_order;
-  const int Q = H + P;       // harmonics of κ̃ (u − β)
-  const int Jr = 2 * H + P;  // harmonics of the set integrals needed
+void NhbSolver::Impl::SynthesizeSlope(const VectorX& x) {
   // du/dθ at the samples: c2r of ik U_k.
   for (int i = 0; i < n; ++i) {
     std::fill(&freq_buf[0][0], &freq_buf[0][0] + 2 * (S / 2 + 1), 0.0);
@@ -109,6 +131,14 @@ void NhbSolver::Impl::IntegrateExactly(const VectorX& x) {
     fftw_execute(c2r);
     for (int s = 0; s < S; ++s) u_slope(i, s) = time_buf[s];
   }
+}
+
+void NhbSolver::Impl::IntegrateExactly(const VectorX& x) {
+  using C = std::complex<double>;
+  const int P = kappa_order;
+  const int Q = H + P;       // harmonics of κ̃ (u − β)
+  const int Jr = 2 * H + P;  // harmonics of the set integrals needed
+  SynthesizeSlope(x);
   for (int i = 0; i < n; ++i) {
     const size_t ii = static_cast<size_t>(i);
     for (int l = 0; l <= H; ++l) {

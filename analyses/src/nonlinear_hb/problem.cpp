@@ -92,6 +92,8 @@ bool NhbContinuationOptions::IsValid(std::string* why) const {
     s << "max_corrector_iterations: must be ≥ 1";
   else if (!(max_tangent_angle > 0))
     s << "max_tangent_angle: must be > 0";
+  else if (!(max_omega_step >= 0) || !std::isfinite(max_omega_step))
+    s << "max_omega_step: must be finite and ≥ 0 (0 = no cap), got " << max_omega_step;
   else if (x_scale < 0 || omega_scale < 0)
     s << "x_scale/omega_scale: must be ≥ 0";
   else

@@ -88,7 +88,11 @@ void NhbSolver::Impl::Evaluate(const VectorX& x, double omega, VectorX* residual
 void NhbSolver::Impl::ForceHarmonics(const VectorX& x, bool jacobian) {
   Synthesize(x);
   if (exact) {
-    IntegrateExactly(x);
+    if (projected) {
+      IntegrateProjected(x);
+    } else {
+      IntegrateExactly(x);
+    }
     return;
   }
   problem.law->Evaluate(u, phase, g, dg);
@@ -121,6 +125,12 @@ void NhbSolver::Evaluate(const VectorX& x, double omega, VectorX* residual, Matr
   if (jacobian) jacobian->resize(impl_->m, impl_->m);
   if (d_omega) d_omega->resize(impl_->m);
   impl_->Evaluate(x, omega, residual, jacobian, d_omega);
+}
+
+MatrixXc NhbSolver::ForceHarmonics(const VectorX& x) {
+  GEARDYN_CHECK_SIZE(x.size(), impl_->m, "x");
+  impl_->ForceHarmonics(x, false);
+  return impl_->g_h;
 }
 
 VectorX NhbSolver::ContactGuess(double omega) {
@@ -183,6 +193,8 @@ double NhbSolver::MaxMultiplier(const VectorX& x, double omega) {
     case NhbStabilityMethod::kNone:
       return 0.0;
     case NhbStabilityMethod::kMonodromy:
+      // A projected law's Jacobian is piecewise constant: the exact product.
+      if (impl_->projected) return impl_->ProjectedMonodromyMaxMultiplier(x, omega);
       return impl_->MonodromyMaxMultiplier(x, omega);
     case NhbStabilityMethod::kHill:
       return impl_->HillMaxMultiplier(x, omega);

@@ -57,6 +57,16 @@ struct NhbSolver::Impl {
   std::vector<std::pair<double, bool>> crossings;  ///< (θ, entering the set u > β).
   std::vector<std::pair<double, double>> intervals;  ///< Ends of {u > β}, second > first.
 
+  // Exact integration of a projected law (projected_integration.cpp).
+  bool projected = false;             ///< exact via the law's NhbProjectedForm.
+  NhbProjectedForm pform;             ///< The law's projected form when projected.
+  VectorXc poly;                      ///< (H+1) harmonics c_k of the scalar polynomial v(θ).
+  VectorX poly_values, poly_slopes;   ///< (S) v and dv/dθ at the samples.
+  VectorXc weighted_integrals;        ///< I_j, j = 0..2H (index j).
+  VectorXc poly_full;                 ///< V_m − β δ_m, m = −H..H (index m + H).
+  std::vector<double> switch_angles;  ///< Set ends of the last IntegrateProjected [rad].
+  MatrixXc projected_offsets;         ///< n×(H+1): b_k of IntegrateProjected.
+
   // Condensed linear part, cached per Ω.
   double cached_omega;
   bool uncondensed = false;                 ///< P = I: Z_k = D_k directly.
@@ -91,6 +101,18 @@ struct NhbSolver::Impl {
   void EvaluateCoordinate(const VectorX& x, int i, double theta, double out[3]) const;
   /// The set {θ ∈ [0, 2π) : u_i(θ) > level} as `intervals` (needs u and u_slope at the samples).
   void FindSuperlevelSet(const VectorX& x, int i, double level);
+  /// The set {θ : v(θ) > level} of v from `poly`, `poly_values`, `poly_slopes` as `intervals`.
+  void FindPolynomialSuperlevelSet(double level);
+  /// v(θ), v′, v″ of the trigonometric polynomial with one-sided harmonics c (H+1).
+  void EvaluatePolynomial(const VectorXc& c, double theta, double out[3]) const;
+  /// u_slope = du/dθ at the samples (c2r).
+  void SynthesizeSlope(const VectorX& x);
+  /// Exact g_h and dg_h of the projected form (needs Synthesize(x) first); the set ends go to
+  /// switch_angles.
+  void IntegrateProjected(const VectorX& x);
+  /// Exact monodromy of a projected law: Π expm(A_j h_j) over the pieces between the switches
+  /// and the weights' breakpoints (A constant on each).
+  double ProjectedMonodromyMaxMultiplier(const VectorX& x, double omega);
   /// Largest (sign = +1) or smallest (−1) value of u_i over the period: the extreme sample
   /// refined to the stationary point of the trigonometric polynomial (needs Synthesize(x)).
   double ExtremeValue(const VectorX& x, int i, double sign);

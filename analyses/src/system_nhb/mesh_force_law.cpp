@@ -2,10 +2,13 @@
 /// @brief MeshForceLaw (mesh_force_law.hpp).
 #include "system_nhb/mesh_force_law.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <numbers>
 #include <variant>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/system/system_harmonics.hpp"
 
 namespace geardyn::internal {
 namespace {
@@ -26,29 +29,44 @@ MeshForceLaw::MeshForceLaw(const SystemModel& model, std::vector<MeshForceTerm> 
   slice_k_.resize(T);
   slice_e_.resize(T);
   // Contact-branch offset: θ-mean of g̃(0, θ) = −mean(K2 ε) (linear) or −Σ_s mean(k_s e_s)
-  // [1, −σ_s] (slices, every slice loaded), by the rectangle rule on 256·P samples.
-  const int samples = 256 * static_cast<int>(model.period_meshes());
-  VectorX phase(samples);
-  for (int s = 0; s < samples; ++s) {
-    phase(s) = 2.0 * std::numbers::pi * static_cast<double>(model.period_meshes()) * s / samples;
-  }
-  UpdateCache(phase);
+  // [1, −σ_s] (slices, every slice loaded). Linear cores: the exact mean of the load channel
+  // (ExpandMeshHarmonics: sinc sums for steps, exact for Fourier series); slices without
+  // separation: zero; slices with separation: the rectangle rule on 256·P samples (exact for
+  // steps whose breakpoints fall on the grid, O(1/(256 P)) otherwise).
   contact_offset_ = VectorX::Zero(n_);
-  for (int t = 0; t < T; ++t) {
-    const MeshForceTerm& term = terms_[t];
-    const SystemMesh& mesh = model_.meshes()[term.mesh];
-    Vector2 mean = Vector2::Zero();
-    for (int s = 0; s < samples; ++s) {
-      if (const SliceMeshCore* core = AsSlice(mesh)) {
-        for (int i = 0; i < core->num_slices(); ++i) {
-          const double ke = slice_k_[t](i, s) * (slice_e_[t].size() ? slice_e_[t](i, s) : 0.0);
-          mean += ke * Vector2(1.0, -core->sigma()(i));
-        }
-      } else {
-        mean += load_[t][s];
-      }
+  bool any_linear = false, any_separation = false;
+  for (const MeshForceTerm& term : terms_) {
+    const SliceMeshCore* core = AsSlice(model_.meshes()[term.mesh]);
+    any_linear = any_linear || core == nullptr;
+    any_separation = any_separation || (core != nullptr && core->separation().has_value());
+  }
+  if (any_linear) {
+    const std::vector<MeshHarmonics> harmonics = ExpandMeshHarmonics(model_, 0);
+    for (const MeshForceTerm& term : terms_) {
+      if (AsSlice(model_.meshes()[term.mesh]) != nullptr) continue;
+      const Vector2 mean = harmonics[static_cast<size_t>(term.mesh)].load[0].real();
+      contact_offset_.segment(term.first, term.count) = -mean.head(term.count);
     }
-    contact_offset_.segment(term.first, term.count) = -(mean / samples).head(term.count);
+  }
+  if (any_separation) {
+    const int samples = 256 * static_cast<int>(model.period_meshes());
+    VectorX phase(samples);
+    for (int s = 0; s < samples; ++s) {
+      phase(s) = 2.0 * std::numbers::pi * static_cast<double>(model.period_meshes()) * s / samples;
+    }
+    UpdateCache(phase);
+    for (int t = 0; t < T; ++t) {
+      const MeshForceTerm& term = terms_[t];
+      const SliceMeshCore* core = AsSlice(model_.meshes()[term.mesh]);
+      if (core == nullptr || !core->separation()) continue;
+      Vector2 mean = Vector2::Zero();
+      for (int s = 0; s < samples; ++s) {
+        for (int i = 0; i < core->num_slices(); ++i) {
+          mean += slice_k_[t](i, s) * slice_e_[t](i, s) * Vector2(1.0, -core->sigma()(i));
+        }
+      }
+      contact_offset_.segment(term.first, term.count) = -(mean / samples).head(term.count);
+    }
   }
 }
 
@@ -134,6 +152,75 @@ void MeshForceLaw::Evaluate(const MatrixX& u, const VectorX& phase, MatrixX& for
       }
     }
   }
+}
+
+bool MeshForceLaw::ProjectedForm(int period_multiple, NhbProjectedForm* form) const {
+  constexpr double kTwoPi = 2.0 * std::numbers::pi;
+  NhbProjectedForm out;
+  out.linear = MatrixX::Zero(n_, n_);
+  for (const MeshForceTerm& term : terms_) {
+    const SystemMesh& mesh = model_.meshes()[term.mesh];
+    const SliceMeshCore* core = AsSlice(mesh);
+    if (core == nullptr || core->separation()) return false;
+    const auto* steps = std::get_if<PiecewiseConstantCoefficient>(&core->stiffness());
+    if (steps == nullptr && !std::holds_alternative<ConstantCoefficient>(core->stiffness())) {
+      return false;  // smooth or tabulated stiffness: sampled AFT
+    }
+    // Base angle θ ∈ [0, 2π) ↦ mesh phase r·p·θ + φ; the stiffness repeats every 2π·P_k, so it
+    // must repeat q = r·p/P_k (a whole number) times over the base period.
+    const double slope = mesh.phase_ratio * period_multiple;
+    const double period = Period(core->stiffness());
+    const double repeats = slope * kTwoPi / period;
+    if (!(slope > 0.0) || std::abs(repeats - std::round(repeats)) > 1e-9 * repeats) return false;
+    std::vector<double> starts{0.0};
+    if (steps != nullptr) {
+      starts.clear();
+      for (Eigen::Index b = 0; b < steps->breakpoints().size(); ++b) {
+        // θ = (θ_b − φ + j·period) / slope, every j with θ ∈ [0, 2π).
+        const double first = (steps->breakpoints()[b] - mesh.phase_offset) / slope;
+        const double spacing = period / slope;
+        double theta = first - std::floor(first / spacing) * spacing;
+        for (; theta < kTwoPi * (1.0 - 1e-15); theta += spacing) starts.push_back(theta);
+      }
+      std::sort(starts.begin(), starts.end());
+      starts.erase(std::unique(starts.begin(), starts.end(),
+                               [](double a, double b) { return b - a < 1e-13 * kTwoPi; }),
+                   starts.end());
+    }
+    const auto K = static_cast<Eigen::Index>(starts.size());
+    const int N = core->num_slices();
+    MatrixX weights(N, K);
+    VectorX buf(N);
+    for (Eigen::Index b = 0; b < K; ++b) {
+      const double end = b + 1 < K ? starts[static_cast<size_t>(b + 1)] : starts[0] + kTwoPi;
+      const double mid = 0.5 * (starts[static_cast<size_t>(b)] + end);
+      geardyn::Evaluate(core->stiffness(), mesh.MeshPhase(period_multiple * mid), buf);
+      weights.col(b) = buf;
+    }
+    const int a = term.first, c = term.count;
+    out.linear.block(a, a, c, c) = -term.mean_k2.topLeftCorner(c, c);
+    for (int s = 0; s < N; ++s) {
+      if (!(weights.row(s).maxCoeff() > 0.0)) continue;  // no contact line ever in this slice
+      NhbProjectedTerm t;
+      t.direction = VectorX::Zero(n_);
+      t.direction[a] = 1.0;
+      if (c == 2) t.direction[a + 1] = -core->sigma()(s);  // v = δ_η − σ_s δ_ζ
+      t.breakpoints = Eigen::Map<const VectorX>(starts.data(), K);
+      t.weights = weights.row(s).transpose();
+      t.ramp_points = {0.0};  // drive flank [v]₊
+      t.ramp_slopes = {1.0};
+      t.ramp_sides = {1};
+      if (std::isfinite(core->backlash())) {
+        // back flank −[−v − j]₊ = s [σ(v − β)]₊ with s = −1, σ = −1, β = −j
+        t.ramp_points.push_back(-core->backlash());
+        t.ramp_slopes.push_back(-1.0);
+        t.ramp_sides.push_back(-1);
+      }
+      out.terms.push_back(std::move(t));
+    }
+  }
+  *form = std::move(out);
+  return true;
 }
 
 void MeshForceLaw::ContactBranch(MatrixX& stiffness, VectorX& offset) const {

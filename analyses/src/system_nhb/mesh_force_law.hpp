@@ -41,6 +41,12 @@ class MeshForceLaw final : public NhbNonlinearLaw {
   void Evaluate(const MatrixX& u, const VectorX& phase, MatrixX& force,
                 MatrixX& jacobian) const override;
   void ContactBranch(MatrixX& stiffness, VectorX& offset) const override;
+  /// Exact projected form (nonlinear_hb.hpp, "Exact integration of projected laws") when every
+  /// mesh is a slice core without separation whose stiffness is constant or piecewise constant
+  /// (spur: exact steps) and repeats a whole number of times over the base period; else false.
+  /// One term per slice: w = [1, −σ_s] on (δ_η, δ_ζ), weight k_s(θ), ramps [v]₊ and, with a
+  /// back flank, −[−v − j]₊; L = −K̄2.
+  bool ProjectedForm(int period_multiple, NhbProjectedForm* form) const override;
 
   /// @brief F_η, ε_η and the contact state of every mesh at S samples (phase = θ_s [rad]).
   MeshForceSamples SampleMeshForces(const MatrixX& u, const VectorX& phase) const;

@@ -4,6 +4,8 @@
 /// forces from the recovered response q_k = T D_k⁻¹ (F_k − P_zᵀ N_k).
 #pragma once
 
+#include <memory>
+
 #include "geardyn/analyses/system_nonlinear_hb.hpp"
 #include "system_nhb/mesh_force_law.hpp"
 
@@ -24,6 +26,8 @@ class SystemPointDescriber {
 
  private:
   void Sample(const NhbPoint& point);  ///< u_, phase_ at S_ samples per base period
+  /// N_k (n × (H+1)) of `point` as the engine computes them.
+  MatrixXc ForceHarmonics(const NhbPoint& point);
 
   const SystemModel& model_;
   const SystemNhbProblem& problem_;
@@ -32,10 +36,14 @@ class SystemPointDescriber {
   int p_ = 1;
   bool element_forces_ = true;
   bool keep_response_ = false;
+  bool exact_ = false;  ///< the engine integrates the law exactly (N_k exact)
   int H_ = -1, S_ = 0;
   MatrixX cos_, sin_;  ///< (H+1) × S: cos/sin(2πks/S)
   MatrixX u_;          ///< n × S
   VectorX phase_;      ///< S: θ_s = p·2πs/S
+  /// The engine for H_: N_k of the recovered response exactly as the engine computed them
+  /// (exact integration or AFT), so that q solves the same discrete equations.
+  std::unique_ptr<NhbSolver> solver_;
 };
 
 }  // namespace geardyn::internal

@@ -56,6 +56,19 @@
 /// derivative: G_d is the exact Jacobian and Newton converges quadratically (away from grazing,
 /// where the residual is only C¹). No aliasing: the error is the truncation at H alone.
 ///
+/// ## Exact integration of projected laws (NhbNonlinearLaw::ProjectedForm)
+/// The slice law of a gear mesh is not separable per coordinate: slice s acts on
+/// v_s = δ_η − σ_s δ_ζ and pushes along [1, −σ_s]. A law given as
+/// g = L u + Σ_t k_t(θ) w_t c_t(w_tᵀ u) with k_t piecewise constant in θ (spur slice stiffness:
+/// exact steps) is integrated exactly: per term, V_m = w_tᵀ U_m; per ramp, the set
+/// A = {σ(v − β) > 0} is located on the trigonometric polynomial v as above, intersected with
+/// the weight's pieces, and
+///   I_j = (1/2π) Σ_{pieces} k_b ∫_{A ∩ piece} e^{−ijθ} dθ,
+///   N_k += s σ w_t Σ_m (V_m − β δ_m) I_{k−m},   G_d += s σ I_d w_t w_tᵀ.
+/// ∂g/∂u is then piecewise constant between the located switches and the weight's
+/// breakpoints, so the monodromy is the exact product of matrix exponentials over those pieces
+/// (no step error: the stability verdict does not depend on monodromy_steps).
+///
 /// ## Stability
 /// Floquet multipliers μ of the periodic orbit (period T = 2π/ω) from the monodromy matrix of
 /// the variational equation y' = A(t) y, A = [0 I; −M⁻¹(K + Pᵀ ∂g/∂u(t) P)  −M⁻¹C] on the full
@@ -92,6 +105,27 @@ struct NhbPiecewiseLinearForm {
   std::vector<std::vector<double>> ramp_slopes;  ///< Per coordinate: Δs_il [-].
 };
 
+/// @brief One term of an NhbProjectedForm: k(θ) w c(wᵀu), c(v) = Σ_l s_l [σ_l (v − β_l)]₊.
+struct NhbProjectedTerm {
+  VectorX direction;  ///< w (n) [-]: the term acts on v = wᵀu and pushes along w.
+  /// Starts θ_b of the pieces of the weight k over the BASE period θ = ωt ∈ [0, 2π)
+  /// (ascending, first ≥ 0); k = weights[b] on [θ_b, θ_{b+1}), the last piece wraps around to
+  /// θ_0 + 2π. One entry: a constant weight.
+  VectorX breakpoints;
+  VectorX weights;                  ///< k_b ≥ 0 [force/u units], one per piece.
+  std::vector<double> ramp_points;  ///< β_l [u units].
+  std::vector<double> ramp_slopes;  ///< s_l [-].
+  std::vector<int> ramp_sides;  ///< σ_l ∈ {+1, −1}: the ramp acts on {σ_l (v − β_l) > 0}.
+};
+
+/// @brief Exact form of a law made of projected piecewise-linear terms with piecewise-constant
+/// weights (see "Exact integration of projected laws"):
+/// g(u, φ) = L u + Σ_t k_t(θ) w_t c_t(w_tᵀ u), θ = φ/p the base angle.
+struct NhbProjectedForm {
+  MatrixX linear;                       ///< L (n×n) [force/u units].
+  std::vector<NhbProjectedTerm> terms;  ///< The terms t.
+};
+
 /// @brief Batched nonlinear force on the nonlinear coordinates: force g(u, φ) and ∂g/∂u at S
 /// samples in one call (one virtual call per state evaluation, never per sample).
 class NhbNonlinearLaw {
@@ -120,6 +154,14 @@ class NhbNonlinearLaw {
   /// Optional exact piecewise-linear form (NhbPiecewiseLinearForm; must describe the same g as
   /// Evaluate). @return false (default): not provided; the engine then samples g (AFT).
   virtual bool PiecewiseLinearForm(NhbPiecewiseLinearForm* form) const {
+    (void)form;
+    return false;
+  }
+  /// Optional exact projected form for the base period of p excitation cycles
+  /// (NhbProjectedForm; must describe the same g as Evaluate). Used when PiecewiseLinearForm is
+  /// not given. @return false (default): not provided.
+  virtual bool ProjectedForm(int period_multiple, NhbProjectedForm* form) const {
+    (void)period_multiple;
     (void)form;
     return false;
   }
@@ -228,6 +270,10 @@ struct NhbContinuationOptions {
   int max_points = 20000;            ///< Hard limit on points, in [2, kMaxPoints].
   int max_corrector_iterations = 8;  ///< Corrector Newton iterations before a step is cut.
   double max_tangent_angle = 0.15;   ///< Largest angle between successive tangents [rad].
+  /// Largest predicted |ΔΩ| per step (0: no cap) [Ω units]: resolves the frequency axis
+  /// without shortening the steps along branches where mostly x changes (there the tangent
+  /// angle and the corrector place the points).
+  double max_omega_step = 0.0;
   /// Scaling of the arclength: s² = ‖Δx‖²/x_scale² + ΔΩ²/omega_scale²; 0 → automatic
   /// (x_scale = max(‖x_start‖, 1e-12·…), omega_scale = |omega_end − omega_start|).
   double x_scale = 0.0;
@@ -291,6 +337,8 @@ class NhbSolver {
   /// Residual R(x, Ω) (size n(2H+1)), its Jacobian ∂R/∂x and ∂R/∂Ω (nullptr → skipped).
   void Evaluate(const VectorX& x, double omega, VectorX* residual, MatrixX* jacobian,
                 VectorX* d_omega);
+  /// N_k (n×(H+1)): the Fourier coefficients of g(u(t), Ωt) at x, as the residual uses them.
+  MatrixXc ForceHarmonics(const VectorX& x);
   /// Initial guess at Ω: the linear contact-branch response.
   VectorX ContactGuess(double omega);
   /// Newton with backtracking line search from `x` (overwritten with the solution); after three

@@ -1,0 +1,177 @@
+/// @file
+/// @brief Exact Fourier coefficients, Jacobian and monodromy of a projected piecewise-linear
+/// law g = L u + Σ_t k_t(θ) w_t c_t(w_tᵀ u) with piecewise-constant weights k_t
+/// (nonlinear_hb.hpp, "Exact integration of projected laws"): the sets {σ(v − β) > 0} of the
+/// trigonometric polynomial v = w_tᵀ u located to round-off, intersected with the weights'
+/// pieces, closed-form integrals of e^{−ijθ} over them, and discrete convolutions with V.
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <numbers>
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include "nonlinear_hb/solver_impl.hpp"
+
+namespace geardyn {
+namespace {
+
+using C = std::complex<double>;
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+/// Adds (k/2π) ∫_lo^hi e^{−ijθ} dθ, j = 0..J, to out[j].
+void AddIntervalIntegrals(double lo, double hi, double k, int J, VectorXc& out) {
+  out[0] += k * (hi - lo) / kTwoPi;
+  const C za = std::polar(1.0, -lo), zb = std::polar(1.0, -hi);
+  C pa = 1.0, pb = 1.0;
+  for (int j = 1; j <= J; ++j) {
+    pa *= za;
+    pb *= zb;
+    // (1/2π) ∫_lo^hi e^{−ijθ} dθ = (e^{−ij lo} − e^{−ij hi}) / (2π i j)
+    const C d = (pa - pb) * (k / (kTwoPi * j));
+    out[j] += C(d.imag(), -d.real());  // d / i
+  }
+}
+
+}  // namespace
+
+void NhbSolver::Impl::IntegrateProjected(const VectorX& x) {
+  // g is piecewise linear in u: on each piece g = (∂g/∂u) u + (offset), so
+  //   N_k = Σ_l G_{k−l} U_l − b_k,  G_j = L δ_j + Σ_t Σ_ramps gain I_j w wᵀ,
+  //   b_k = Σ_t Σ_ramps gain β I_k w   (gain = s σ),
+  // one Toeplitz product for all terms instead of one convolution per term and ramp.
+  SynthesizeSlope(x);
+  for (MatrixXc& block : dg_h) block.setZero();
+  switch_angles.clear();
+  const int top = 2 * H;  // highest Jacobian harmonic
+  MatrixXc& offsets = projected_offsets;
+  offsets.setZero(n, H + 1);
+  for (const NhbProjectedTerm& term : pform.terms) {
+    const VectorX& w = term.direction;
+    // V_m = wᵀ U_m (m = 0..H) and the samples of v and v′.
+    VectorXc V = VectorXc::Zero(H + 1);
+    for (int i = 0; i < n; ++i) {
+      if (w[i] == 0.0) continue;
+      V[0] += w[i] * x[i];
+      for (int k = 1; k <= H; ++k) V[k] += w[i] * C(x[Re(k, i)], x[Im(k, i)]);
+    }
+    const VectorX v = u.transpose() * w, dv = u_slope.transpose() * w;
+    const Eigen::Index K = term.breakpoints.size();
+    for (size_t r = 0; r < term.ramp_points.size(); ++r) {
+      const double sigma = term.ramp_sides[r] > 0 ? 1.0 : -1.0;
+      const double beta = term.ramp_points[r];
+      const double gain = term.ramp_slopes[r] * sigma;  // d/dv of s [σ(v − β)]₊ on the set
+      // {σ(v − β) > 0} = {σv > σβ}.
+      poly = sigma * V;
+      poly_values = sigma * v;
+      poly_slopes = sigma * dv;
+      FindPolynomialSuperlevelSet(sigma * beta);
+      if (intervals.empty()) continue;
+      // Weighted set integrals I_j = (1/2π) Σ_b k_b ∫_{A ∩ piece b} e^{−ijθ} dθ. The intervals
+      // start in [0, 2π) and end before start + 2π; the pieces tile the line with period 2π,
+      // so shifts −2π, 0, 2π of them cover every overlap once.
+      weighted_integrals.setZero(top + 1);
+      for (const auto& [ta, tb] : intervals) {
+        if (tb - ta < kTwoPi) {
+          switch_angles.push_back(ta);
+          switch_angles.push_back(tb >= kTwoPi ? tb - kTwoPi : tb);
+        }
+        for (Eigen::Index piece = 0; piece < K; ++piece) {
+          const double lo = term.breakpoints[piece];
+          const double hi =
+              piece + 1 < K ? term.breakpoints[piece + 1] : term.breakpoints[0] + kTwoPi;
+          const double k = term.weights[piece];
+          if (k == 0.0) continue;
+          for (double shift : {-kTwoPi, 0.0, kTwoPi}) {
+            const double from = std::max(ta, lo + shift), to = std::min(tb, hi + shift);
+            if (to > from) AddIntervalIntegrals(from, to, k, top, weighted_integrals);
+          }
+        }
+      }
+      for (int d = 0; d <= top; ++d) {
+        const C coefficient = gain * weighted_integrals[d];
+        for (int b = 0; b < n; ++b) {
+          if (w[b] == 0.0) continue;
+          for (int a = 0; a < n; ++a) {
+            if (w[a] != 0.0) dg_h[d](a, b) += coefficient * (w[a] * w[b]);
+          }
+        }
+      }
+      if (beta != 0.0) {
+        for (int k = 0; k <= H; ++k) {
+          const C coefficient = gain * beta * weighted_integrals[k];
+          for (int a = 0; a < n; ++a) offsets(a, k) += coefficient * w[a];
+        }
+      }
+    }
+  }
+  dg_h[0] += pform.linear.cast<C>();
+  // N_k = Σ_{l=−H..H} G_{k−l} U_l − b_k (G_{−j} = conj G_j, U_{−l} = conj U_l).
+  for (int k = 0; k <= H; ++k) {
+    for (int a = 0; a < n; ++a) {
+      C sum = -offsets(a, k);
+      for (int l = -H; l <= H; ++l) {
+        const int j = k - l;
+        const int al = l < 0 ? -l : l;
+        for (int b = 0; b < n; ++b) {
+          const C Ub = al == 0 ? C(x[b], 0.0) : C(x[Re(al, b)], x[Im(al, b)]);
+          const C Gj = j >= 0 ? dg_h[j](a, b) : std::conj(dg_h[-j](a, b));
+          sum += Gj * (l < 0 ? std::conj(Ub) : Ub);
+        }
+      }
+      g_h(a, k) = sum;
+    }
+  }
+}
+
+double NhbSolver::Impl::ProjectedMonodromyMaxMultiplier(const VectorX& x, double omega) {
+  // The switches of x (the ends of every contact set) and the weights' breakpoints cut the
+  // base period into pieces on which ∂g/∂u, hence A, is constant.
+  Synthesize(x);
+  IntegrateProjected(x);
+  std::vector<double> cuts = switch_angles;
+  for (const NhbProjectedTerm& term : pform.terms) {
+    for (Eigen::Index b = 0; b < term.breakpoints.size(); ++b) cuts.push_back(term.breakpoints[b]);
+  }
+  cuts.push_back(0.0);
+  cuts.push_back(kTwoPi);
+  for (double& c : cuts) c = std::clamp(c, 0.0, kTwoPi);
+  std::sort(cuts.begin(), cuts.end());
+  std::vector<std::pair<double, double>> pieces;
+  for (size_t j = 0; j + 1 < cuts.size(); ++j) {
+    if (cuts[j + 1] - cuts[j] > 1e-14 * kTwoPi) pieces.emplace_back(cuts[j], cuts[j + 1]);
+  }
+  // ∂g/∂u at the piece midpoints from the law itself (one batched call).
+  const Eigen::Index P = static_cast<Eigen::Index>(pieces.size());
+  VectorX theta(P);
+  for (Eigen::Index j = 0; j < P; ++j) theta[j] = 0.5 * (pieces[j].first + pieces[j].second);
+  MatrixX um, gm(n, P), dgm(n * n, P);
+  SynthesizeAt(x, theta, um, nullptr);
+  const VectorX ph = theta * double(p);
+  problem.law->Evaluate(um, ph, gm, dgm);
+
+  const int N = dofs;
+  const double w = omega / p;
+  const MatrixX Minv = problem.mass.inverse();
+  const MatrixX& Pm = problem.projection;
+  MatrixX A = MatrixX::Zero(2 * N, 2 * N);
+  A.topRightCorner(N, N).setIdentity();
+  A.bottomRightCorner(N, N) = -Minv * problem.damping;
+  const MatrixX minv_k = -Minv * problem.stiffness;
+  const MatrixX minv_pt = -Minv * Pm.transpose();
+  MatrixX phi = MatrixX::Identity(2 * N, 2 * N), next(2 * N, 2 * N);
+  for (Eigen::Index j = 0; j < P; ++j) {
+    const double h = (pieces[j].second - pieces[j].first) / w;
+    const Eigen::Map<const MatrixX> G(dgm.col(j).data(), n, n);
+    A.bottomLeftCorner(N, N) = minv_k + minv_pt * G * Pm;
+    const MatrixX E = (A * h).exp();
+    next.noalias() = E * phi;
+    phi.swap(next);
+  }
+  if (!phi.allFinite()) return std::numeric_limits<double>::quiet_NaN();
+  Eigen::EigenSolver<MatrixX> es(phi, false);
+  if (es.info() != Eigen::Success) return std::numeric_limits<double>::quiet_NaN();
+  return es.eigenvalues().cwiseAbs().maxCoeff();
+}
+
+}  // namespace geardyn
