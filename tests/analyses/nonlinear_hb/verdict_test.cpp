@@ -7,10 +7,9 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 
-#include "analyses/nonlinear_hb/bk_parameter_sets.hpp"
 #include "geardyn/analyses/nonlinear_hb.hpp"
-#include "geardyn/analyses/nonlinear_hb_clearance.hpp"
 
 namespace geardyn {
 namespace {
@@ -35,16 +34,38 @@ TEST(NhbVerdict, FiniteMultiplierAgainstTheMargin) {
   EXPECT_EQ(NhbVerdict(1.0, 0.0), FloquetVerdict::kUnstable);  // no margin: |μ| = 1 is not < 1
 }
 
-// One Newton iteration cannot reach the contact-loss orbit of the B&K oscillator from the
-// contact-branch guess: the solve reports the failure and its point has no verdict (before,
-// `stable` stayed true on a failed point).
+/// A law whose force is NaN wherever u > 0 (a broken user law): no Newton can converge.
+class NanLaw final : public NhbNonlinearLaw {
+ public:
+  int num_coordinates() const override { return 1; }
+  void Evaluate(const MatrixX& u, const VectorX& /*phase*/, MatrixX& force,
+                MatrixX& jacobian) const override {
+    force = u.unaryExpr(
+        [](double v) { return v > 0.0 ? std::numeric_limits<double>::quiet_NaN() : 0.0; });
+    jacobian = MatrixX::Zero(1, u.cols());
+  }
+  void ContactBranch(MatrixX& stiffness, VectorX& offset) const override {
+    stiffness = MatrixX::Zero(1, 1);
+    offset = VectorX::Zero(1);
+  }
+};
+
+// A point whose solve failed carries no verdict (before, `stable` stayed true on it) and the
+// solve reports the failure.
 TEST(NhbVerdict, FailedSolveHasNoVerdict) {
+  NhbProblem problem;
+  problem.mass = MatrixX::Identity(1, 1);
+  problem.damping = 0.1 * MatrixX::Identity(1, 1);
+  problem.stiffness = MatrixX::Identity(1, 1);
+  problem.projection = MatrixX::Identity(1, 1);
+  problem.force_mean = VectorX::Ones(1);  // static deflection u = 1 > 0: the law is NaN there
+  problem.force_amplitude = VectorXc::Zero(1);
+  problem.law = std::make_shared<NanLaw>();
   NhbOptions options;
-  options.harmonics = 16;
-  options.max_newton_iterations = 1;
-  const NhbSolveResult r = SolveNonlinearHarmonicBalance(
-      MakeClearanceOscillator(testing::BkSingleSidedSet()), 0.85, options);
-  ASSERT_NE(r.point.status, Status::kSuccess) << "expected a failed solve at 1 iteration";
+  options.harmonics = 4;
+  options.force_integration = NhbForceIntegration::kSampled;
+  const NhbSolveResult r = SolveNonlinearHarmonicBalance(problem, 1.0, options);
+  ASSERT_NE(r.point.status, Status::kSuccess);
   EXPECT_FALSE(r.summary.ok());
   EXPECT_EQ(r.point.stable, FloquetVerdict::kUndetermined);
 }
