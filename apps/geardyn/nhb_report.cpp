@@ -72,7 +72,11 @@ json MakeNhbReport(const std::string& scene_source, const NhbRunInfo& info,
     json p;
     p["mesh_frequency_hz"] = Finite(r.mesh_frequency_hz);
     p["branch"] = r.point.branch;
-    p["stable"] = r.point.stable;
+    // true / false, null when undetermined (a non-finite multiplier or a failed point).
+    p["stable"] = r.point.stable == FloquetVerdict::kUndetermined
+                      ? json(nullptr)
+                      : json(r.point.stable == FloquetVerdict::kStable);
+    p["verdict"] = ToString(r.point.stable);
     p["max_multiplier"] = Finite(r.point.max_multiplier);
     p["error_estimate"] = Finite(r.point.error_estimate);
     p["status"] = StatusName(r.point.status);
@@ -136,7 +140,10 @@ std::string FormatNhbCsv(const SystemNhbCurve& curve) {
   }
   os << "\n";
   for (const SystemNhbPoint& r : curve.points) {
-    os << Num(r.mesh_frequency_hz) << "," << r.point.branch << "," << (r.point.stable ? 1 : 0)
+    os << Num(r.mesh_frequency_hz) << "," << r.point.branch << ","
+       << (r.point.stable == FloquetVerdict::kStable     ? "1"
+           : r.point.stable == FloquetVerdict::kUnstable ? "0"
+                                                         : "nan")
        << "," << Num(r.point.max_multiplier) << "," << Num(r.point.error_estimate) << ","
        << StatusName(r.point.status);
     for (const SystemNhbMeshOutput& m : r.meshes) {
@@ -185,10 +192,12 @@ std::string FormatNhbText(const json& report) {
       std::snprintf(line, sizeof(line),
                     "%12.2f %6d %-8s %10.6f  %-16s %11.5g %11.5g %11.5g %11.5g %11.5g %5.1f%%%s\n",
                     Get(p["mesh_frequency_hz"]), p["branch"].get<int>(),
-                    p["stable"].get<bool>() ? "yes" : "no", Get(p["max_multiplier"]),
-                    m["name"].get<std::string>().c_str(), 1e6 * Get(m["rms_dte_m"]),
-                    1e6 * Get(m["peak_to_peak_dte_m"]), Get(m["mean_force_n"]),
-                    Get(m["min_force_n"]), Get(m["max_force_n"]),
+                    p["verdict"] == "stable"     ? "yes"
+                    : p["verdict"] == "unstable" ? "no"
+                                                 : "undetermined",
+                    Get(p["max_multiplier"]), m["name"].get<std::string>().c_str(),
+                    1e6 * Get(m["rms_dte_m"]), 1e6 * Get(m["peak_to_peak_dte_m"]),
+                    Get(m["mean_force_n"]), Get(m["min_force_n"]), Get(m["max_force_n"]),
                     100.0 * Get(m["contact_loss_fraction"]),
                     p["status"].get<std::string>() == "success" ? "" : "  (!)");
       os << line;
@@ -238,7 +247,7 @@ std::string RenderNhbPlot(const SystemNhbCurve& curve, const std::string& title)
         continue;
       }
       const double x = r.mesh_frequency_hz, y = 1e6 * r.meshes.front().rms_dte;
-      const bool stable = r.point.stable;
+      const bool stable = r.point.stable == FloquetVerdict::kStable;  // undetermined: dashed
       if (!have_previous || panel.series.back().dashed == stable) {
         PlotSeries run;
         run.colour = kCurveColour;

@@ -40,6 +40,9 @@ constexpr size_t kPredictorNodes = 4;
 /// Tangent refinement: relative size of the last step, and most refinement steps.
 constexpr double kTangentTolerance = 1e-7;
 constexpr int kTangentRefinements = 5;
+/// Corrector fallback at fixed Ω only while the unit tangent advances in Ω by at least this
+/// (scaled) fraction: near a fold a fixed-Ω solve has no solution or lands on the other branch.
+constexpr double kFallbackTangentOmega = 0.2;
 
 NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options,
                             const NhbContinuationOptions& c, int H) {
@@ -130,7 +133,7 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
     point.tangent_omega = t[m];
     if (options.stability != NhbStabilityMethod::kNone) {
       point.max_multiplier = solver.MaxMultiplier(xx, om);
-      point.stable = point.max_multiplier < 1.0 + options.stability_margin;
+      point.stable = NhbVerdict(point.max_multiplier, options.stability_margin);
     }
     curve.points.push_back(std::move(point));
     if (c.progress) c.progress(static_cast<int>(curve.points.size()), om);
@@ -140,13 +143,18 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
 
   double ds = c.initial_step;
   const double tol_scale = options.newton_tolerance;
-  // Scale as NhbSolver::Newton: 1 + max ‖F̃_k‖∞ is not exposed; use 1 + ‖f₀‖∞ + |f₁|∞.
-  const double tol = tol_scale * (1.0 + problem.force_mean.lpNorm<Eigen::Infinity>() +
-                                  problem.force_amplitude.cwiseAbs().maxCoeff());
+  // The residual tolerance: the larger of tol·(1 + ‖f₀‖∞ + |f₁|∞) and Newton's own,
+  // tol·(1 + max ‖F̃_k‖∞) at the predicted Ω. Issue 13: a gear system's f₀ is in torques on the
+  // flexible coordinates (≈ 100 N·m) while its residual is in mesh forces (F̃_0 ≈ 1 400 N), so
+  // the first scale alone was 14× tighter than the Newton that found the first point, down at
+  // the level where the sampled AFT's kinks stall the corrector: steps were rejected to min_step.
+  const double force_tol = tol_scale * (1.0 + problem.force_mean.lpNorm<Eigen::Infinity>() +
+                                        problem.force_amplitude.cwiseAbs().maxCoeff());
   VectorX xp(m), xc(m);
   double op_predicted = 0.0;
   long rejected = 0;
   long factorisations = 1;
+  long fallbacks = 0;  // corrector failures solved at fixed Ω by NhbSolver::Newton
   // The factorised bordered matrix of the last accepted point (its Jacobian and tangent row)
   // is the chord matrix of the next corrector; restored after a rejected step.
   auto factor_at_accepted = [&]() {
@@ -184,6 +192,7 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
       op_predicted = omega + step * so * t[m];
     }
     const double op = op_predicted;
+    const double tol = std::max(force_tol, solver.ResidualTolerance(op));
     xc = xp;
     double oc = op;
     bool converged = false;
@@ -227,8 +236,10 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
       xc += z.head(m);
       oc += z[m];
       // Stagnation at the residual floor: a correction below round-off of the state counts as
-      // converged once the residual is small.
-      if (correction <= 1e-13 * (1.0 + xc.lpNorm<Eigen::Infinity>()) && res <= 1e3 * tol) {
+      // converged once the residual is small. x and Ω each against their own size: Ω of a gear
+      // system is ~1e4 rad/s while x is ~1e-5 m, and one absolute bound never held for both.
+      if (z.head(m).lpNorm<Eigen::Infinity>() <= 1e-13 * (1.0 + xc.lpNorm<Eigen::Infinity>()) &&
+          std::abs(z[m]) <= 1e-13 * (1.0 + std::abs(oc)) && res <= 1e3 * tol) {
         solver.Evaluate(xc, oc, &R, nullptr, nullptr);
         assembled = false;
         res = R.lpNorm<Eigen::Infinity>();
@@ -238,6 +249,28 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
       }
     }
     newton += it + 1;
+    // Fallback (issue 13): the bordered corrector on the sampled AFT residual can cycle at a
+    // contact switch (a sample crossing the contact boundary: the Jacobian of one side, the
+    // root on the other). Away from folds (the tangent still advances in Ω) the point at the
+    // predicted Ω is solved by NhbSolver::Newton instead — damped Newton, then Powell's dogleg
+    // — and kept when it lies within one step of the prediction (the same branch), before the
+    // step is cut.
+    if (!converged && std::abs(t[m]) >= kFallbackTangentOmega && op > 0 && xp.allFinite()) {
+      VectorX xf = xp;
+      Status fallback_status = Status::kNotConverged;
+      double fallback_res = 0.0;
+      const int fallback_it = solver.Newton(xf, op, &fallback_status, &fallback_res);
+      newton += fallback_it;
+      if (fallback_status == Status::kSuccess && (xf - xp).norm() / sx <= ds) {
+        xc = xf;
+        oc = op;
+        res = fallback_res;
+        it = c.max_corrector_iterations;  // a hard step: it will not grow
+        converged = true;
+        assembled = false;
+        ++fallbacks;
+      }
+    }
     VectorX t_new;
     bool accept = converged && oc > 0;
     const bool cubic = smooth && history.size() == kPredictorNodes && !tangent_predictor;
@@ -343,6 +376,23 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
       << " rad/s): an undamped linear resonance? Expect lost digits";
     curve.summary.warnings.push_back(w.str());
   }
+  // A point whose multipliers came out non-finite has no verdict (issue 12): the curve's status
+  // says so, as the linear HB's undetermined verdicts do.
+  long undetermined = 0;
+  const NhbPoint* first_undetermined = nullptr;
+  for (const NhbPoint& pt : curve.points) {
+    if (pt.stable != FloquetVerdict::kUndetermined) continue;
+    ++undetermined;
+    if (first_undetermined == nullptr) first_undetermined = &pt;
+  }
+  if (first_undetermined != nullptr && curve.summary.ok()) {
+    std::ostringstream w;
+    w << std::setprecision(10) << "stability undetermined (non-finite max |mu|) at " << undetermined
+      << " point(s), the first at Omega = " << first_undetermined->omega << " rad/s";
+    curve.summary.status = Status::kNumericalIssue;
+    curve.summary.message = w.str();
+  }
+  curve.summary.counters["undetermined_verdicts"] = undetermined;
   double err = 0.0;
   for (const NhbPoint& pt : curve.points) err = std::max(err, pt.error_estimate);
   curve.summary.error_estimate = err;
@@ -350,6 +400,7 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   curve.summary.counters["newton_iterations"] = newton;
   curve.summary.counters["rejected_steps"] = rejected;
   curve.summary.counters["factorisations"] = factorisations;
+  curve.summary.counters["newton_fallbacks"] = fallbacks;
   curve.summary.counters["folds"] = static_cast<long>(curve.folds.size());
   curve.summary.counters["harmonics"] = H;
   return curve;

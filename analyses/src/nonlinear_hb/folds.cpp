@@ -80,7 +80,7 @@ void FindFoldsAndJumps(NhbCurve& curve, const std::vector<double>& steps, double
         const int i = from + direction * k;
         if (i < 0 || i >= static_cast<int>(pts.size())) break;
         if (pts[static_cast<size_t>(i)].branch != side_branch) break;
-        if (pts[static_cast<size_t>(i)].stable) return true;
+        if (pts[static_cast<size_t>(i)].stable == FloquetVerdict::kStable) return true;
       }
       return false;
     };
@@ -102,7 +102,7 @@ void FindFoldsAndJumps(NhbCurve& curve, const std::vector<double>& steps, double
           p.branch == pts[std::min<size_t>(fold.index + 1, pts.size() - 1)].branch) {
         continue;
       }
-      if (!p.stable || !q.stable) continue;
+      if (p.stable != FloquetVerdict::kStable || q.stable != FloquetVerdict::kStable) continue;
       if ((p.omega - fold.omega) * (q.omega - fold.omega) > 0 || p.omega == q.omega) continue;
       const double w = (fold.omega - p.omega) / (q.omega - p.omega);
       const double rms = Lerp(p.rms[0], q.rms[0], w);

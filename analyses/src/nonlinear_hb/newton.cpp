@@ -20,6 +20,12 @@ namespace {
 constexpr double kShortStep = 0.125;
 /// … in this many consecutive iterations hand the solve to Powell's hybrid method.
 constexpr int kStagnantIterations = 3;
+/// Newton homotopy (NhbSolver::Impl::Homotopy): first λ step, smallest step, Newton iterations
+/// per step.
+constexpr double kHomotopyFirstStep = 0.1;
+constexpr double kHomotopyMinStep = 1e-4;
+constexpr int kHomotopyIterations = 12;
+constexpr double kHomotopyMaxStep = 0.2;
 
 void CopyIn(const gsl_vector* v, VectorX& x) {
   for (Eigen::Index i = 0; i < x.size(); ++i) x[i] = gsl_vector_get(v, static_cast<size_t>(i));
@@ -87,6 +93,11 @@ int NhbSolver::Impl::PowellHybrid(VectorX& x, double omega, double tol, double* 
   return it;
 }
 
+double NhbSolver::ResidualTolerance(double omega) {
+  impl_->UpdateLinear(omega);
+  return impl_->options.newton_tolerance * impl_->force_scale;
+}
+
 int NhbSolver::Newton(VectorX& x, double omega, Status* status, double* residual_norm) {
   Impl& s = *impl_;
   GEARDYN_CHECK_SIZE(x.size(), s.m, "x");
@@ -97,6 +108,127 @@ int NhbSolver::Newton(VectorX& x, double omega, Status* status, double* residual
   double rn = 0.0;
   s.x_start = x;
   *status = Status::kNotConverged;
+  // Newton homotopy R(x) − (1 − λ) R(x₀) = 0, λ: 0 → 1 in adaptive steps from x = x₀ (x is
+  // overwritten with the last point reached); kSuccess when λ = 1 with ‖R‖∞ ≤ tol. Returns the
+  // Newton iterations used.
+  auto homotopy = [&s, omega, tol](VectorX& hx, Status* hstatus, double* hnorm) -> int {
+    s.Evaluate(hx, omega, &s.R, nullptr, nullptr);
+    const VectorX r0 = s.R;  // R(x₀)
+    int total = 0;
+    // Damped Newton on R(hx) − shift = 0 from hx; true when ‖·‖∞ ≤ target.
+    auto solve = [&](const VectorX& shift, double target, VectorX& xs, double* norm) {
+      for (int k = 0; k < kHomotopyIterations; ++k, ++total) {
+        s.Evaluate(xs, omega, &s.R, &s.J, nullptr);
+        s.R -= shift;
+        const double hr = s.R.lpNorm<Eigen::Infinity>();
+        *norm = hr;
+        if (!std::isfinite(hr)) return false;
+        if (hr <= target) return true;
+        s.lu.compute(s.J);
+        s.dx = s.lu.solve(-s.R);
+        if (!s.dx.allFinite()) return false;
+        double step = 1.0;
+        for (int ls = 0; ls < 10; ++ls) {
+          s.x_trial = xs + step * s.dx;
+          s.Evaluate(s.x_trial, omega, &s.R_trial, nullptr, nullptr);
+          s.R_trial -= shift;
+          if (s.R_trial.lpNorm<Eigen::Infinity>() < (1.0 - 1e-4 * step) * hr) break;
+          step *= 0.5;
+        }
+        xs = s.x_trial;
+      }
+      return false;
+    };
+    // Pseudo-arclength in (x/x_scale, λ): the path folds in λ where contact is lost (the
+    // contact branch softens and turns back), so λ alone cannot parametrize it.
+    const int mm = s.m;
+    const double xs_scale = std::max(hx.norm(), 1e-300);
+    Eigen::PartialPivLU<MatrixX> blu;
+    MatrixX B(mm + 1, mm + 1);
+    VectorX rhs(mm + 1), dz(mm + 1);
+    // Unit tangent at (x, λ) (scaled), oriented along `previous`: J x' = −r0, λ' = 1.
+    auto tangent_at = [&](const VectorX& xx, double l, const VectorX& previous, VectorX* t) {
+      s.Evaluate(xx, omega, &s.R, &s.J, nullptr);
+      s.lu.compute(s.J);
+      const VectorX xp = s.lu.solve(-r0);
+      if (!xp.allFinite()) return false;
+      t->resize(mm + 1);
+      t->head(mm) = xp / xs_scale;
+      (*t)[mm] = 1.0;
+      t->normalize();
+      if (previous.size() == mm + 1 && t->dot(previous) < 0.0) *t = -*t;
+      (void)l;
+      return true;
+    };
+    double lambda = 0.0, ds = kHomotopyFirstStep;
+    double hr = r0.lpNorm<Eigen::Infinity>();
+    *hstatus = Status::kNotConverged;
+    VectorX t;
+    if (!tangent_at(hx, 0.0, VectorX(), &t)) return total;
+    VectorX x_prev = hx;
+    double lambda_prev = 0.0;
+    while (lambda < 1.0 && ds >= kHomotopyMinStep && total < 20 * s.options.max_newton_iterations) {
+      // Predictor along the tangent, corrector on [R − (1 − λ) r0; tᵀ(y − y_pred)] = 0.
+      const VectorX xpred = hx + ds * xs_scale * t.head(mm);
+      const double lpred = lambda + ds * t[mm];
+      VectorX xc = xpred;
+      double lc = lpred;
+      bool ok = false;
+      for (int k = 0; k < kHomotopyIterations; ++k, ++total) {
+        s.Evaluate(xc, omega, &s.R, &s.J, nullptr);
+        s.R -= (1.0 - lc) * r0;
+        hr = s.R.lpNorm<Eigen::Infinity>();
+        if (!std::isfinite(hr)) break;
+        if (hr <= 1e3 * tol) {
+          ok = true;
+          break;
+        }
+        B.topLeftCorner(mm, mm) = s.J;
+        B.topRightCorner(mm, 1) = r0;  // ∂/∂λ of R − (1 − λ) r0
+        B.bottomLeftCorner(1, mm) = t.head(mm).transpose() / xs_scale;
+        B(mm, mm) = t[mm];
+        rhs.head(mm) = -s.R;
+        rhs[mm] = -(t.head(mm).dot(xc - xpred) / xs_scale + t[mm] * (lc - lpred));
+        blu.compute(B);
+        dz = blu.solve(rhs);
+        if (!dz.allFinite()) break;
+        xc += dz.head(mm);
+        lc += dz[mm];
+      }
+      if (!ok) {
+        ds *= 0.5;
+        continue;
+      }
+      x_prev = hx;
+      lambda_prev = lambda;
+      hx = xc;
+      lambda = lc;
+      ds = std::min(1.5 * ds, kHomotopyMaxStep);
+      VectorX t_new;
+      if (!tangent_at(hx, lambda, t, &t_new)) break;
+      t = t_new;
+    }
+    if (lambda >= 1.0) {
+      // Passed λ = 1: interpolate between the last two points, then Newton at λ = 1.
+      const double w = (1.0 - lambda_prev) / (lambda - lambda_prev);
+      VectorX xs = x_prev + w * (hx - x_prev);
+      if (solve(VectorX::Zero(mm), tol, xs, &hr)) {
+        hx = xs;
+      } else {
+        lambda = 0.0;  // not reached
+      }
+    }
+    if (lambda >= 1.0) {
+      s.Evaluate(hx, omega, &s.R, nullptr, nullptr);
+      hr = s.R.lpNorm<Eigen::Infinity>();
+      *hstatus = hr <= tol ? Status::kSuccess : Status::kNotConverged;
+    } else if (!std::isfinite(hr)) {
+      *hstatus = Status::kNumericalIssue;
+    }
+    *hnorm = hr;
+    return total;
+  };
+
   for (; it <= s.options.max_newton_iterations; ++it) {
     s.Evaluate(x, omega, &s.R, &s.J, nullptr);
     rn = s.R.lpNorm<Eigen::Infinity>();
@@ -135,6 +267,16 @@ int NhbSolver::Newton(VectorX& x, double omega, Status* status, double* residual
     }
     x = s.x_trial;  // the smallest trial step when none was accepted (escape a kink)
     short_steps = lambda < kShortStep ? short_steps + 1 : 0;
+  }
+  if (*status == Status::kNotConverged) {
+    // Issue 13: from the contact guess of a gear system with back-flank contact both damped
+    // Newton and the dogleg stall (measured: ‖R‖∞ 180 → 55 N at 1 600 Hz on the spur pair with
+    // backlash). The Newton homotopy R(x) − (1 − λ) R(x₀) = 0 starts at its solution x₀ (λ = 0)
+    // and reaches R = 0 at λ = 1 in steps small enough for Newton from the previous point.
+    VectorX homotopy_x = s.x_start;
+    const int used = homotopy(homotopy_x, status, &rn);
+    it += used;
+    if (*status == Status::kSuccess) x = homotopy_x;
   }
   if (residual_norm) *residual_norm = rn;
   return it;

@@ -1,5 +1,5 @@
 /// @file
-/// @brief Validation of NhbProblem and the nonlinear HB options.
+/// @brief Validation of NhbProblem and the nonlinear HB options; the verdict rule NhbVerdict.
 #include <cmath>
 #include <sstream>
 
@@ -14,6 +14,13 @@ bool Fail(std::string* why, const std::string& text) {
 }
 
 }  // namespace
+
+FloquetVerdict NhbVerdict(double max_multiplier, double margin) {
+  // A NaN compares false both ways and an inf multiplier comes from a failed product, not a
+  // measured growth: neither may read as "unstable" (nor, through std::max, as "stable").
+  if (!std::isfinite(max_multiplier)) return FloquetVerdict::kUndetermined;
+  return max_multiplier < 1.0 + margin ? FloquetVerdict::kStable : FloquetVerdict::kUnstable;
+}
 
 bool NhbProblem::IsValid(std::string* why) const {
   if (!law) return Fail(why, "law: must be set");

@@ -35,7 +35,9 @@ NhbSolveResult SolveNonlinearHarmonicBalance(const NhbProblem& problem, double o
     solver.Describe(*x, omega, point);
     if (options.stability != NhbStabilityMethod::kNone && status == Status::kSuccess) {
       point.max_multiplier = solver.MaxMultiplier(*x, omega);
-      point.stable = point.max_multiplier < 1.0 + options.stability_margin;
+      point.stable = NhbVerdict(point.max_multiplier, options.stability_margin);
+    } else if (status != Status::kSuccess) {
+      point.stable = FloquetVerdict::kUndetermined;  // no verdict on a failed solve
     }
   };
   VectorX x;

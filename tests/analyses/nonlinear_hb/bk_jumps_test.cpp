@@ -34,7 +34,10 @@ bool StableBranchAt(const NhbCurve& curve, double omega, double rms_hint, double
   for (size_t i = 0; i + 1 < curve.points.size(); ++i) {
     const NhbPoint& p = curve.points[i];
     const NhbPoint& q = curve.points[i + 1];
-    if (!p.stable || !q.stable || p.branch != q.branch) continue;
+    if (p.stable != FloquetVerdict::kStable || q.stable != FloquetVerdict::kStable ||
+        p.branch != q.branch) {
+      continue;
+    }
     if ((p.omega - omega) * (q.omega - omega) > 0 || p.omega == q.omega) continue;
     const double w = (omega - p.omega) / (q.omega - p.omega);
     const double r = p.rms[0] + w * (q.rms[0] - p.rms[0]);
@@ -157,7 +160,7 @@ TEST(NonlinearHbBkOscillator, BackSideContactJumpsMatchTimeIntegration) {
     // Right at a fold the lower branch grazes the back flank: skip points within 0.5 %.
     bool near_fold = false;
     for (const NhbFold& f : curve.folds) near_fold |= std::abs(pt.omega - f.omega) < 5e-3 * f.omega;
-    if (!pt.stable || near_fold) continue;
+    if (pt.stable != FloquetVerdict::kStable || near_fold) continue;
     const bool on_back_branch = pt.rms[0] > 1.0;  // the back-contact branch has RMS > 1.05
     EXPECT_EQ(pt.minimum[0] < -1.0, on_back_branch) << "Ω = " << pt.omega << " RMS " << pt.rms[0];
     back += on_back_branch;

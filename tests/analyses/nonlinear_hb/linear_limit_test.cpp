@@ -38,7 +38,7 @@ TEST(NonlinearHbLinearLimit, SingleFrequencyEqualsClosedForm) {
     EXPECT_NEAR(r.point.harmonics(0, 0).real(), 1.0 + p.mean_force, 1e-10);
     EXPECT_NEAR(std::abs(r.point.harmonics(0, 1) - ClosedFormU1(p, w)), 0.0, 1e-10) << w;
     for (int k = 2; k <= 8; ++k) EXPECT_NEAR(std::abs(r.point.harmonics(0, k)), 0.0, 1e-10);
-    EXPECT_TRUE(r.point.stable);  // a damped LTI oscillator
+    EXPECT_EQ(r.point.stable, FloquetVerdict::kStable);  // a damped LTI oscillator
     EXPECT_LT(r.point.max_multiplier, 1.0);
   }
 }
@@ -63,7 +63,7 @@ TEST(NonlinearHbLinearLimit, ContinuationTracesTheLinearCurveWithoutFolds) {
     // A(1 − cos(π/S)).
     const double ptp = 4.0 * std::abs(ClosedFormU1(p, pt.omega));
     EXPECT_NEAR(pt.peak_to_peak[0], ptp, ptp * (1.0 - std::cos(M_PI / 64)) + 1e-12);
-    EXPECT_TRUE(pt.stable);
+    EXPECT_EQ(pt.stable, FloquetVerdict::kStable);
   }
 }
 

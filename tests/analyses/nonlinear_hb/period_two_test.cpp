@@ -30,7 +30,7 @@ TEST(NonlinearHbPeriodTwo, ParametricResonanceOrbitMatchesTimeIntegration) {
   one.harmonics = 16;
   const NhbSolveResult r1 = SolveNonlinearHarmonicBalance(problem, omega, one);
   ASSERT_TRUE(r1.summary.ok()) << r1.summary.BriefReport();
-  EXPECT_FALSE(r1.point.stable) << "max |μ| = " << r1.point.max_multiplier;
+  EXPECT_EQ(r1.point.stable, FloquetVerdict::kUnstable) << "max |μ| = " << r1.point.max_multiplier;
 
   // Time integration from a perturbed static state: 1500 excitation periods to settle.
   const testing::BkParameters bk{p.zeta, p.alpha, p.mean_force, 0.0, 0.0, true};

@@ -48,7 +48,7 @@ TEST(NonlinearHbStability, MiddleBranchUnstableOuterBranchesStable) {
     const double w = curve.points[i].omega;
     if (std::abs(w - w0) < 5e-3 * w0 || std::abs(w - w1) < 5e-3 * w1) continue;
     const NhbPoint& pt = curve.points[i];
-    EXPECT_EQ(pt.stable, pt.branch != 1)
+    EXPECT_EQ(pt.stable == FloquetVerdict::kStable, pt.branch != 1)
         << "Ω = " << pt.omega << " branch " << pt.branch << " |μ| = " << pt.max_multiplier;
     ++checked;
   }
@@ -67,7 +67,7 @@ TEST(NonlinearHbStability, HillAgreesWithMonodromy) {
     const NhbPoint& pt = curve.points[i];
     if (std::abs(pt.omega - w0) < 5e-3 * w0 || std::abs(pt.omega - w1) < 5e-3 * w1) continue;
     const double mu = solver.MaxMultiplier(testing::PointUnknowns(pt), pt.omega);
-    EXPECT_EQ(mu < 1.0, pt.stable) << "Ω = " << pt.omega;
+    EXPECT_EQ(mu < 1.0, pt.stable == FloquetVerdict::kStable) << "Ω = " << pt.omega;
     EXPECT_NEAR(mu, pt.max_multiplier, 0.05 * pt.max_multiplier) << "Ω = " << pt.omega;
   }
 }
@@ -84,7 +84,7 @@ TEST(NonlinearHbStability, TimeIntegrationLeavesTheUnstableOrbit) {
   }
   ASSERT_GT(middle.size(), 4u);
   const NhbPoint& unstable = curve.points[middle[middle.size() / 2]];
-  ASSERT_FALSE(unstable.stable);
+  ASSERT_EQ(unstable.stable, FloquetVerdict::kUnstable);
   auto start_state = [](const NhbPoint& pt) {
     // x(0) = Σ_k U_k, x'(0) = Σ_k ikω U_k (two-sided sums), t = 0 ↔ phase Ωt = 0.
     testing::BkState s;
@@ -105,7 +105,7 @@ TEST(NonlinearHbStability, TimeIntegrationLeavesTheUnstableOrbit) {
   for (size_t i = 0; i + 1 < curve.points.size(); ++i) {
     const NhbPoint& a = curve.points[i];
     const NhbPoint& b = curve.points[i + 1];
-    if (!a.stable || !b.stable) continue;
+    if (a.stable != FloquetVerdict::kStable || b.stable != FloquetVerdict::kStable) continue;
     if ((a.omega - unstable.omega) * (b.omega - unstable.omega) > 0) continue;
     const double w = (unstable.omega - a.omega) / (b.omega - a.omega);
     best = std::min(best, std::abs(a.rms[0] + w * (b.rms[0] - a.rms[0]) - stats.rms));
@@ -113,7 +113,7 @@ TEST(NonlinearHbStability, TimeIntegrationLeavesTheUnstableOrbit) {
   EXPECT_LT(best, 0.01 * stats.rms);
   // Control: a stable orbit (the first point) is kept by the time integration.
   const NhbPoint& stable = curve.points.front();
-  ASSERT_TRUE(stable.stable);
+  ASSERT_EQ(stable.stable, FloquetVerdict::kStable);
   testing::BkState s2 = start_state(stable);
   testing::BkIntegrate(bk, stable.omega, 100, 4, s2, &stats);
   EXPECT_NEAR(stats.rms, stable.rms[0], 1e-3 * stable.rms[0]);

@@ -68,7 +68,9 @@ void SweepFromBranch(const SystemModel& model, const SystemNhbCurve& c, const Sy
   const double target = jump.mesh_frequency_hz - direction * 10.0 * kStepHz;
   const SystemNhbPoint* start = nullptr;
   for (const SystemNhbPoint& p : c.points) {
-    if (!p.point.stable || std::abs(p.mesh_frequency_hz - target) > kStepHz) continue;
+    if (p.point.stable != FloquetVerdict::kStable ||
+        std::abs(p.mesh_frequency_hz - target) > kStepHz)
+      continue;
     const double rms = p.meshes[0].rms_dte;
     if (start == nullptr ||
         (lower ? rms < start->meshes[0].rms_dte : rms > start->meshes[0].rms_dte)) {

@@ -86,7 +86,7 @@ TEST(KbRigSweep, SofteningJumpAndSuperHarmonicBelowTheLinearResonance) {
   // The large-amplitude branch runs with long contact loss.
   double loss_at_peak = 0.0, peak = 0.0;
   for (const SystemNhbPoint& p : c.points) {
-    if (p.point.stable && p.meshes[0].rms_dte > peak) {
+    if (p.point.stable == FloquetVerdict::kStable && p.meshes[0].rms_dte > peak) {
       peak = p.meshes[0].rms_dte;
       loss_at_peak = p.meshes[0].contact_loss_fraction;
     }

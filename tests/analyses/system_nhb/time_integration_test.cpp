@@ -19,7 +19,7 @@ void CompareAt(double mesh_frequency_hz, bool expect_contact_loss) {
   Summary summary;
   const SystemNhbPoint hb = SolveSystemNonlinearHb(model, mesh_frequency_hz, options, &summary);
   ASSERT_TRUE(summary.ok()) << summary.BriefReport();
-  ASSERT_TRUE(hb.point.stable) << "max |μ| = " << hb.point.max_multiplier;
+  ASSERT_EQ(hb.point.stable, FloquetVerdict::kStable) << "max |μ| = " << hb.point.max_multiplier;
   const SystemNhbMeshOutput& m = hb.meshes.at(0);
 
   testing::SystemTimeIntegrator ti(model);

@@ -63,6 +63,7 @@
 #include <string>
 #include <vector>
 
+#include "geardyn/analyses/floquet_verdict.hpp"
 #include "geardyn/common/eigen_types.hpp"
 #include "geardyn/common/summary.hpp"
 #include "geardyn/system/system_model.hpp"
@@ -135,22 +136,7 @@ struct FloquetOptions {
   bool IsValid(std::string* why) const;
 };
 
-/// @brief The stability verdict of a Floquet analysis (three-valued: a computation can fail).
-///
-/// Rules (FinishResult in analyses/src/floquet/multipliers.cpp; docs/design.md "Floquet verdicts"),
-/// with e = summary.error_estimate and the flexible multipliers (rigid-body ones, exactly 1,
-/// excluded):
-/// * kUndetermined when e or any multiplier is NaN, e is infinite, a multiplier is infinite while
-///   its exponent is not finite (a failed monodromy, not an overflowing growth), or the status is
-///   neither kSuccess nor kToleranceNotMet; also kToleranceNotMet unless the point is unstable
-///   beyond its estimate.
-/// * kUnstable when max|λ| − e > 1 (an overflowing |λ| = inf with a finite exponent Re μ > 0
-///   counts), with status kSuccess or kToleranceNotMet: the growth exceeds the estimated error.
-/// * kStable only when the status is kSuccess, every multiplier is finite and max|λ| ≤ 1 + e.
-///   FloquetResult::marginal then says whether the stability is only neutral.
-enum class FloquetVerdict { kStable, kUnstable, kUndetermined };
-/// "stable", "unstable", "undetermined".
-const char* ToString(FloquetVerdict verdict);
+// FloquetVerdict (three-valued, its rules): floquet_verdict.hpp.
 
 /// @brief A mode of the mean LTI system with no damping (for a marginal verdict).
 struct UndampedMode {

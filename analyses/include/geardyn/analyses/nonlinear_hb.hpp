@@ -89,6 +89,7 @@
 #include <string>
 #include <vector>
 
+#include "geardyn/analyses/floquet_verdict.hpp"
 #include "geardyn/common/eigen_types.hpp"
 #include "geardyn/common/summary.hpp"
 
@@ -239,7 +240,11 @@ struct NhbPoint {
   double error_estimate = 0;  ///< RMS of the top quarter of harmonics / RMS (all coordinates).
   double tangent_omega = 0;   ///< dΩ/ds of the continuation tangent (0 for a single solve).
   int branch = 0;             ///< Branch id: incremented at every fold.
-  bool stable = true;         ///< max |μ| < 1 (true when stability was not computed).
+  /// Three-valued (issue 12): kStable iff max|μ| < 1 + stability_margin, kUnstable iff
+  /// max|μ| ≥ 1 + stability_margin, kUndetermined when max|μ| is NaN or ±inf or the point did
+  /// not converge (NhbVerdict). kStable when stability was not computed (kNone: the point is not
+  /// judged; folds then give their jumps as for stable branches).
+  FloquetVerdict stable = FloquetVerdict::kStable;
   double max_multiplier = 0;  ///< max |μ| (0 when stability was not computed).
   int newton_iterations = 0;  ///< Newton iterations of this point.
   double residual_norm = 0;   ///< Final ‖R‖∞.
@@ -249,6 +254,12 @@ struct NhbPoint {
   double condensation_rcond = 1.0;
   Status status = Status::kSuccess;
 };
+
+/// @brief The verdict of a converged point from its largest multiplier modulus:
+/// kUndetermined when max_multiplier is NaN or infinite (a failed monodromy or Hill
+/// eigenproblem, never "unstable"), kStable when max_multiplier < 1 + margin, else kUnstable.
+/// @param[in] max_multiplier max |μ| [-]. @param[in] margin stability_margin ≥ 0 [-].
+FloquetVerdict NhbVerdict(double max_multiplier, double margin);
 
 /// Reciprocal condition number of the condensation below which a warning is given [-].
 inline constexpr double kNhbIllConditioned = 1e-10;
@@ -346,6 +357,10 @@ class NhbSolver {
   /// (GSL hybridsj) restarts from the initial `x`. Returns the iteration count (both methods);
   /// `status`/`residual_norm` report convergence.
   int Newton(VectorX& x, double omega, Status* status, double* residual_norm);
+  /// The residual tolerance of Newton at Ω: newton_tolerance·(1 + max_k ‖F̃_k‖∞), F̃_k the
+  /// condensed forces [N] (a gear system's f₀ is in torques on the flexible coordinates, but its
+  /// residual is in mesh forces: F̃_0 carries the mean mesh force).
+  double ResidualTolerance(double omega);
   /// Fills omega, harmonics, mean, rms, peak_to_peak, max, min, error_estimate of `point`.
   void Describe(const VectorX& x, double omega, NhbPoint& point);
   /// Floquet multiplier of largest modulus (method per options).
