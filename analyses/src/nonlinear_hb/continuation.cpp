@@ -40,6 +40,19 @@ constexpr size_t kPredictorNodes = 4;
 /// Tangent refinement: relative size of the last step, and most refinement steps.
 constexpr double kTangentTolerance = 1e-7;
 constexpr int kTangentRefinements = 5;
+/// Undamped resonance: the response norm ‖x‖ grew by kUndampedGrowth while every point since
+/// stayed within kUndampedBand·|Ω| of the frequency where the growth began (a vertical branch:
+/// a damped resonance of damping ratio ζ changes its amplitude by only √(1 + (δ/ζ)²) over a
+/// relative detuning δ, so ×30 within 10⁻³ needs ζ ≲ 3·10⁻⁵).
+constexpr double kUndampedGrowth = 30.0;
+constexpr double kUndampedBand = 1e-3;
+
+std::string OmegaText(const NhbContinuationOptions& c, double omega) {
+  if (c.omega_text) return c.omega_text(omega);
+  std::ostringstream s;
+  s << std::setprecision(10) << "Omega = " << omega;
+  return s.str();
+}
 
 NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options,
                             const NhbContinuationOptions& c, int H) {
@@ -62,7 +75,8 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   long newton = solver.Newton(x, omega, &status, &rn);
   if (status != Status::kSuccess) {
     curve.summary.status = status;
-    curve.summary.message = "no solution at omega_start (Newton ‖R‖∞ = " + std::to_string(rn) + ")";
+    curve.summary.message = "no solution at the start, " + OmegaText(c, omega) +
+                            " (Newton ‖R‖∞ = " + std::to_string(rn) + ")";
     return curve;
   }
   const double sx = c.x_scale > 0 ? c.x_scale : std::max(x.norm(), 1e-12);
@@ -159,6 +173,11 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   history[0] << x, omega;
   std::vector<double> history_s{0.0};
   bool tangent_predictor = false;  // after a rejected step: the first-order predictor
+  std::vector<NhbFold> located;    // folds located during the trace
+  long fold_evaluations = 0;
+  // Undamped-resonance watch: Ω and ‖x‖ where the current narrow frequency band began.
+  double band_omega = omega;
+  double band_norm = x.norm();
   while (static_cast<int>(curve.points.size()) < c.max_points) {
     if (smooth && history.size() == kPredictorNodes && !tangent_predictor) {
       // Cubic extrapolation in arclength through the last four points (error O(ds⁴) instead
@@ -289,7 +308,9 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
       if (ds < c.min_step) {
         curve.summary.status = Status::kNotConverged;
         curve.summary.message =
-            "continuation step fell below min_step at Ω = " + std::to_string(omega);
+            "continuation step fell below min_step at " + OmegaText(c, omega) +
+            " (the corrector does not converge on any smaller step: a bifurcation, a grazing "
+            "contact or an ill-posed problem)";
         break;
       }
       continue;
@@ -307,16 +328,83 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
       history.push_back(std::move(y));
       tangent_predictor = false;
     }
+    if ((oc - c.omega_end) * direction >= 0) {
+      // The step reached or passed the end of the range: the last point is the solution at
+      // exactly omega_end, by Newton at fixed Ω from the linear interpolation of the step.
+      const double w = (c.omega_end - omega) / (oc - omega);
+      VectorX x_end = x + w * (xc - x);
+      Status end_status;
+      double end_res = 0.0;
+      const long end_it = solver.Newton(x_end, c.omega_end, &end_status, &end_res);
+      newton += end_it;
+      if (end_status != Status::kSuccess) {
+        curve.summary.status = end_status;
+        curve.summary.message = "no solution at the end of the range, " +
+                                OmegaText(c, c.omega_end) +
+                                " (Newton ‖R‖∞ = " + std::to_string(end_res) + ")";
+        break;
+      }
+      const double chord = std::hypot((x_end - x).norm() / sx, (c.omega_end - omega) / so);
+      assemble(x_end, c.omega_end, t);
+      lu.compute(B);
+      ++factorisations;
+      t = tangent();
+      x = x_end;
+      omega = c.omega_end;
+      record(x, omega, static_cast<int>(end_it), end_res);
+      steps.push_back(chord);
+      break;
+    }
+    if ((t_new[m] > 0) != (t[m] > 0)) {
+      // A fold between the last point and this one: located to fold_tolerance.
+      VectorX ya(m + 1), yb(m + 1);
+      ya << x, omega;
+      yb << xc, oc;
+      const internal::FoldLocation loc = internal::LocateFold(
+          solver, ya, t, yb, sx, so, tol, c.fold_tolerance, c.max_corrector_iterations);
+      fold_evaluations += loc.evaluations;
+      if (std::isfinite(loc.error)) {
+        NhbPoint at;
+        solver.Describe(loc.y.head(m), loc.y[m], at);
+        NhbFold fold;
+        fold.omega = loc.omega;
+        fold.omega_error = loc.error;
+        fold.located = loc.converged;
+        fold.rms = at.rms[0];
+        fold.maximum = at.maximum[0];
+        fold.minimum = at.minimum[0];
+        fold.index = static_cast<int>(curve.points.size()) - 1;
+        fold.omega_maximum = t[m] > 0;
+        located.push_back(fold);
+      }
+    }
     x = xc;
     omega = oc;
     t = t_new;
-    if ((omega - c.omega_end) * direction > 0) break;  // passed the end of the range
     if ((omega - c.omega_start) * direction < -0.5 * std::abs(c.omega_end - c.omega_start)) {
       curve.summary.warnings.push_back("curve turned back below omega_start; stopped");
       break;
     }
     record(x, omega, it + 1, res);
     steps.push_back(ds);
+    {
+      // Undamped resonance: a vertical branch (see kUndampedGrowth).
+      const double norm = x.norm();
+      if (std::abs(omega - band_omega) > kUndampedBand * std::abs(band_omega)) {
+        band_omega = omega;
+        band_norm = norm;
+      } else if (norm > kUndampedGrowth * band_norm) {
+        std::ostringstream msg;
+        msg << std::setprecision(3) << "undamped resonance near " << OmegaText(c, omega)
+            << ": the response grew " << norm / band_norm << "-fold while the frequency stayed "
+            << "within " << 100 * kUndampedBand << " % (a vertical branch: nothing damps "
+            << "this resonance, and the periodic response grows without bound); add damping";
+        curve.summary.status = Status::kNotConverged;
+        curve.summary.message = msg.str();
+        curve.undamped_resonance_omega = omega;
+        break;
+      }
+    }
     // Chord iterations (smooth residual) contract linearly: one more correction is normal.
     const int extra = smooth ? 1 : 0;
     if (it <= 1 + extra) ds = std::min(ds * 1.5, c.max_step);
@@ -325,7 +413,16 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   if (static_cast<int>(curve.points.size()) >= c.max_points) {
     curve.summary.warnings.push_back("max_points reached before omega_end");
   }
-  internal::FindFoldsAndJumps(curve, steps, so);
+  internal::FindFoldsAndJumps(curve, steps, so, located);
+  for (const NhbFold& fold : curve.folds) {
+    if (!fold.located) {
+      std::ostringstream w;
+      w << std::setprecision(3) << "fold near " << OmegaText(c, fold.omega)
+        << " not located to fold_tolerance " << c.fold_tolerance << " (estimated relative error "
+        << fold.omega_error / std::abs(fold.omega) << ")";
+      curve.summary.warnings.push_back(w.str());
+    }
+  }
   // The worst conditioning of the condensation along the curve, once.
   const NhbPoint* worst = nullptr;
   for (const NhbPoint& pt : curve.points) {
@@ -334,8 +431,8 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   if (worst != nullptr && worst->condensation_rcond < kNhbIllConditioned) {
     std::ostringstream w;
     w << std::setprecision(3) << "nonlinear HB: ill-conditioned condensation (estimated 1/cond "
-      << "down to " << worst->condensation_rcond << " at Omega = " << worst->omega
-      << " rad/s): an undamped linear resonance? Expect lost digits";
+      << "down to " << worst->condensation_rcond << " at " << OmegaText(c, worst->omega)
+      << "): an undamped linear resonance? Expect lost digits";
     curve.summary.warnings.push_back(w.str());
   }
   double err = 0.0;
@@ -346,6 +443,7 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   curve.summary.counters["rejected_steps"] = rejected;
   curve.summary.counters["factorisations"] = factorisations;
   curve.summary.counters["folds"] = static_cast<long>(curve.folds.size());
+  curve.summary.counters["fold_solves"] = fold_evaluations;
   curve.summary.counters["harmonics"] = H;
   return curve;
 }
