@@ -101,6 +101,15 @@ TEST(HbNonlinearCommandTest, TraceAcrossThePrimaryResonanceFoldShowsTheJump) {
   EXPECT_EQ(report["harmonics"], 16);
   const json& points = report["points"];
   ASSERT_GE(points.size(), static_cast<std::size_t>(kResolution));
+  // The sweep covers the requested range, both ends included exactly (issue 13).
+  EXPECT_EQ(points.front()["mesh_frequency_hz"].get<double>(), kLoHz);
+  EXPECT_EQ(points.back()["mesh_frequency_hz"].get<double>(), kHiHz);
+  // Every fold located to the default fold tolerance (1e-8 relative, below --tolerance 1e-4).
+  ASSERT_EQ(report["fold_errors_hz"].size(), report["folds_hz"].size());
+  for (std::size_t k = 0; k < report["folds_hz"].size(); ++k) {
+    EXPECT_LE(report["fold_errors_hz"][k].get<double>(),
+              1e-8 * report["folds_hz"][k].get<double>());
+  }
 
   int unstable = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {

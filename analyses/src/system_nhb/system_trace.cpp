@@ -109,6 +109,13 @@ SystemNhbCurve TraceSystemNonlinearHb(const SystemModel& model, const SystemNhbO
                                            options.keep_response);
   out.points.reserve(curve.points.size());
   for (const NhbPoint& p : curve.points) out.points.push_back(describer.Describe(p));
+  // The ends as requested (2π f / 2π may differ from f in the last bit).
+  if (!out.points.empty() && curve.points.front().omega == c.omega_start) {
+    out.points.front().mesh_frequency_hz = options.start_hz;
+  }
+  if (!out.points.empty() && curve.points.back().omega == c.omega_end) {
+    out.points.back().mesh_frequency_hz = options.end_hz;
+  }
   for (const NhbFold& f : curve.folds) {
     out.fold_frequencies_hz.push_back(f.omega / kTwoPi);
     out.fold_errors_hz.push_back(f.omega_error / kTwoPi);

@@ -133,7 +133,7 @@ TEST(NhbContinuation, FoldsWithinTheRequestedToleranceOfTheClosedForm) {
   const double fold_min = FoldOmega(-1, 1.0, 0.15, 0.26, 0.2646);
   ASSERT_GT(fold_max, fold_min);
   for (double tolerance : {1e-6, 1e-10}) {
-    for (double max_step : {0.05, 0.013}) {
+    for (double max_step : {0.05, 0.004}) {
       const NhbCurve curve = Trace(0.6, 1.2, max_step, tolerance);
       ASSERT_TRUE(curve.summary.ok()) << curve.summary.BriefReport();
       ASSERT_EQ(curve.folds.size(), 2u) << "max_step " << max_step;
