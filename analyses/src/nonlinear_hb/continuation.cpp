@@ -46,6 +46,11 @@ constexpr int kTangentRefinements = 5;
 /// relative detuning δ, so ×30 within 10⁻³ needs ζ ≲ 3·10⁻⁵).
 constexpr double kUndampedGrowth = 30.0;
 constexpr double kUndampedBand = 1e-3;
+/// Two located folds of the same kind are the same fold when their Ω agree within kSameFold
+/// (relative; far above the fold tolerance, far below the distance of distinct folds) and
+/// their RMS within kSameFoldRms.
+constexpr double kSameFold = 1e-6;
+constexpr double kSameFoldRms = 1e-4;
 
 std::string OmegaText(const NhbContinuationOptions& c, double omega) {
   if (c.omega_text) return c.omega_text(omega);
@@ -364,8 +369,27 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
           solver, ya, t, yb, sx, so, tol, c.fold_tolerance, c.max_corrector_iterations);
       fold_evaluations += loc.evaluations;
       if (std::isfinite(loc.error)) {
-        NhbPoint at;
-        solver.Describe(loc.y.head(m), loc.y[m], at);
+        // A closed branch (an isola, or the loops of an undamped system): the trace comes back
+        // to a fold it has located before, and would cycle until max_points.
+        NhbPoint at_fold;
+        solver.Describe(loc.y.head(m), loc.y[m], at_fold);
+        const auto seen = std::find_if(located.begin(), located.end(), [&](const NhbFold& f) {
+          return f.omega_maximum == (t[m] > 0) &&
+                 std::abs(f.omega - loc.omega) <= kSameFold * std::abs(loc.omega) &&
+                 std::abs(f.rms - at_fold.rms[0]) <= kSameFoldRms * std::abs(f.rms);
+        });
+        if (seen != located.end()) {
+          std::ostringstream msg;
+          msg << "the branch closed on itself: it came back to the fold at "
+              << OmegaText(c, seen->omega) << " after "
+              << static_cast<long>(curve.points.size()) - 1 - seen->index
+              << " more points (a closed loop, e.g. of an undamped system); the end of the "
+              << "range is not on it";
+          curve.summary.status = Status::kNotConverged;
+          curve.summary.message = msg.str();
+          break;
+        }
+        const NhbPoint& at = at_fold;
         NhbFold fold;
         fold.omega = loc.omega;
         fold.omega_error = loc.error;
@@ -382,7 +406,9 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
     omega = oc;
     t = t_new;
     if ((omega - c.omega_start) * direction < -0.5 * std::abs(c.omega_end - c.omega_start)) {
-      curve.summary.warnings.push_back("curve turned back below omega_start; stopped");
+      curve.summary.warnings.push_back(
+          "the curve turned back past the start of the range (at " + OmegaText(c, omega) +
+          ", half the range beyond the start): stopped before the end of the range");
       break;
     }
     record(x, omega, it + 1, res);
@@ -410,8 +436,12 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
     if (it <= 1 + extra) ds = std::min(ds * 1.5, c.max_step);
     if (it >= 4 + extra) ds = std::max(ds * 0.7, c.min_step);
   }
-  if (static_cast<int>(curve.points.size()) >= c.max_points) {
-    curve.summary.warnings.push_back("max_points reached before omega_end");
+  if (static_cast<int>(curve.points.size()) >= c.max_points && curve.summary.ok()) {
+    // The range was not covered: not a result.
+    curve.summary.status = Status::kNotConverged;
+    curve.summary.message = "max_points (" + std::to_string(c.max_points) + ") reached at " +
+                            OmegaText(c, omega) + " before the end of the range, " +
+                            OmegaText(c, c.omega_end);
   }
   internal::FindFoldsAndJumps(curve, steps, so, located);
   for (const NhbFold& fold : curve.folds) {

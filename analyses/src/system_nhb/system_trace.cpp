@@ -100,6 +100,15 @@ SystemNhbCurve TraceSystemNonlinearHb(const SystemModel& model, const SystemNhbO
   out.harmonics_used = curve.harmonics_used;
   out.period_multiple = hb.period_multiple;
   out.summary = curve.summary;
+  if (sp.problem.damping.isZero(0.0)) {
+    // Said first: every resonance crossed is unbounded, and a failed trace is explained by it.
+    out.summary.warnings.insert(
+        out.summary.warnings.begin(),
+        "the model has no damping (no mesh damping or damping_ratio, no element damping): the "
+        "periodic response is unbounded at every resonance the range crosses, and the "
+        "continuation may climb a vertical branch or loop; give the meshes a damping_ratio");
+    if (!out.summary.ok()) out.summary.message += " (the model has no damping)";
+  }
   if (curve.undamped_resonance_omega > 0.0) {
     out.summary.message += "; " + NameResonantMode(model, curve.undamped_resonance_omega / kTwoPi,
                                                    hb.period_multiple, curve.harmonics_used);
