@@ -40,17 +40,18 @@ constexpr size_t kPredictorNodes = 4;
 /// Tangent refinement: relative size of the last step, and most refinement steps.
 constexpr double kTangentTolerance = 1e-7;
 constexpr int kTangentRefinements = 5;
-/// Undamped resonance: the response norm ‖x‖ grew by kUndampedGrowth while every point since
-/// stayed within kUndampedBand·|Ω| of the frequency where the growth began (a vertical branch:
-/// a damped resonance of damping ratio ζ changes its amplitude by only √(1 + (δ/ζ)²) over a
-/// relative detuning δ, so ×30 within 10⁻³ needs ζ ≲ 3·10⁻⁵).
-constexpr double kUndampedGrowth = 30.0;
+/// Undamped resonance: the response norm ‖x‖ doubled (kUndampedGrowth) while every point since
+/// stayed within kUndampedBand·|Ω| of the frequency where the growth began, without a fold (a
+/// vertical branch). A damped resonance of damping ratio ζ changes its amplitude by at most
+/// √(1 + (δ/ζ)²) over a relative detuning δ, so doubling within 10⁻³ needs ζ < 6·10⁻⁴; an
+/// undamped one (A ∝ 1/δ) doubles within 10⁻³ once it is within 2·10⁻³ of the resonance.
+constexpr double kUndampedGrowth = 2.0;
 constexpr double kUndampedBand = 1e-3;
 /// Two located folds of the same kind are the same fold when their Ω agree within kSameFold
-/// (relative; far above the fold tolerance, far below the distance of distinct folds) and
-/// their RMS within kSameFoldRms.
-constexpr double kSameFold = 1e-6;
-constexpr double kSameFoldRms = 1e-4;
+/// (relative; above the fold tolerance and the sampled AFT's repeatability, ~1e-6 on the rig,
+/// far below the distance of distinct folds) and their RMS within kSameFoldRms.
+constexpr double kSameFold = 1e-5;
+constexpr double kSameFoldRms = 1e-3;
 
 std::string OmegaText(const NhbContinuationOptions& c, double omega) {
   if (c.omega_text) return c.omega_text(omega);
@@ -416,7 +417,9 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
     {
       // Undamped resonance: a vertical branch (see kUndampedGrowth).
       const double norm = x.norm();
-      if (std::abs(omega - band_omega) > kUndampedBand * std::abs(band_omega)) {
+      const bool fold = curve.points.size() >= 2 &&
+                        (curve.points[curve.points.size() - 2].tangent_omega > 0) != (t[m] > 0);
+      if (fold || std::abs(omega - band_omega) > kUndampedBand * std::abs(band_omega)) {
         band_omega = omega;
         band_norm = norm;
       } else if (norm > kUndampedGrowth * band_norm) {

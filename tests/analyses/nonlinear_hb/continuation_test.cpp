@@ -174,6 +174,39 @@ TEST(NhbContinuation, SweepEndsAtTheRequestedFrequencyInBothDirections) {
   }
 }
 
+// An undamped resonance: the B&K oscillator x'' + 2ζx' + g(x) = F_m + F_a cos Ωt with the
+// dead zone |x| ≤ 1 (contact on both sides) is linear with natural frequency 1 at amplitudes
+// A ≫ 1: its backbone tends to Ω = 1 from below (Ω ≈ 1 − O(1/A), the dead zone's share of the
+// period; closed form of the linear limit). At ζ = 0 the branch climbs towards it without
+// bound: the trace stops with not_converged and names the frequency instead of climbing to
+// max_points; at ζ = 10⁻³ the peak is bounded and it traces the whole range.
+TEST(NhbContinuation, UndampedResonanceIsDetectedAtTheNaturalFrequency) {
+  for (double zeta : {0.0, 1e-3}) {
+    ClearanceOscillatorParameters p;
+    p.zeta = zeta;
+    p.mean_force = 0.1;
+    p.alternating_force = 0.1;
+    NhbOptions options;
+    options.harmonics = 2;
+    options.stability = NhbStabilityMethod::kNone;
+    NhbContinuationOptions c;
+    c.omega_start = 0.5;
+    c.omega_end = 1.5;
+    const NhbCurve curve = TraceNonlinearHarmonicBalance(MakeClearanceOscillator(p), options, c);
+    if (zeta == 0.0) {
+      EXPECT_EQ(curve.summary.status, Status::kNotConverged);
+      EXPECT_NE(curve.summary.message.find("undamped resonance"), std::string::npos)
+          << curve.summary.message;
+      EXPECT_NEAR(curve.undamped_resonance_omega, 1.0, 5e-3);
+      EXPECT_LT(curve.points.size(), 20000u);
+    } else {
+      ASSERT_TRUE(curve.summary.ok()) << curve.summary.BriefReport();
+      EXPECT_EQ(curve.points.back().omega, 1.5);
+      EXPECT_EQ(curve.undamped_resonance_omega, 0.0);
+    }
+  }
+}
+
 TEST(NhbContinuation, FoldToleranceIsValidated) {
   NhbContinuationOptions c;
   std::string why;

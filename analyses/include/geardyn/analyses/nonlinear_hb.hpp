@@ -283,8 +283,8 @@ struct NhbCurve {
   std::vector<NhbFold> folds;
   std::vector<NhbJump> jumps;
   int harmonics_used = 0;  ///< H.
-  /// Ω where the trace stopped on a vertical branch (an undamped resonance: the response grew
-  /// ×30 within 0.1 % of Ω; summary.status kNotConverged); 0 when none.
+  /// Ω where the trace stopped on a vertical branch (an undamped resonance: the response
+  /// doubled within 0.1 % of Ω without a fold; summary.status kNotConverged); 0 when none.
   double undamped_resonance_omega = 0.0;
   Summary summary;  ///< error_estimate: max point error_estimate; counters: points, newton, folds.
 };
