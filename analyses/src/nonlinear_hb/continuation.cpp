@@ -52,6 +52,8 @@ constexpr double kUndampedBand = 1e-3;
 /// far below the distance of distinct folds) and their RMS within kSameFoldRms.
 constexpr double kSameFold = 1e-5;
 constexpr double kSameFoldRms = 1e-3;
+/// ... and the trace went farther than kLoopSpan·|Ω| from the fold in between.
+constexpr double kLoopSpan = 1e-2;
 
 std::string OmegaText(const NhbContinuationOptions& c, double omega) {
   if (c.omega_text) return c.omega_text(omega);
@@ -374,10 +376,20 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
         // to a fold it has located before, and would cycle until max_points.
         NhbPoint at_fold;
         solver.Describe(loc.y.head(m), loc.y[m], at_fold);
+        // The loop must have left the fold's neighbourhood: the sampled AFT's micro-zigzags
+        // put folds of the same kind within ~1e-4 Ω of each other (see folds.cpp).
+        auto left_fold = [&](const NhbFold& f) {
+          for (size_t i = static_cast<size_t>(f.index) + 1; i < curve.points.size(); ++i) {
+            if (std::abs(curve.points[i].omega - f.omega) > kLoopSpan * std::abs(f.omega)) {
+              return true;
+            }
+          }
+          return false;
+        };
         const auto seen = std::find_if(located.begin(), located.end(), [&](const NhbFold& f) {
           return f.omega_maximum == (t[m] > 0) &&
                  std::abs(f.omega - loc.omega) <= kSameFold * std::abs(loc.omega) &&
-                 std::abs(f.rms - at_fold.rms[0]) <= kSameFoldRms * std::abs(f.rms);
+                 std::abs(f.rms - at_fold.rms[0]) <= kSameFoldRms * std::abs(f.rms) && left_fold(f);
         });
         if (seen != located.end()) {
           std::ostringstream msg;

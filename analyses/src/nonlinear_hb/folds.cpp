@@ -67,6 +67,17 @@ void FindFoldsAndJumps(NhbCurve& curve, const std::vector<double>& steps, double
     const NhbFold& f0 = curve.folds[i];
     const NhbFold& f1 = curve.folds[i + 1];
     if (std::abs(f0.omega - f1.omega) < kFoldMergeTolerance * std::abs(f0.omega)) {
+      // The surviving neighbours of the cluster are only known to within its span: their error
+      // estimates grow to it (and they no longer count as located to the tolerance).
+      for (size_t k : {i - 1, i + 2}) {
+        if ((k == i - 1 && i == 0) || k >= curve.folds.size()) continue;
+        NhbFold& f = curve.folds[k];
+        const double span = std::max(std::abs(f.omega - f0.omega), std::abs(f.omega - f1.omega));
+        if (span < kFoldMergeTolerance * std::abs(f.omega) && span > f.omega_error) {
+          f.omega_error = span;
+          f.located = false;
+        }
+      }
       curve.folds.erase(curve.folds.begin() + i, curve.folds.begin() + i + 2);
       if (i > 0) --i;
     } else {
