@@ -107,12 +107,9 @@ SystemNhbCurve TraceSystemNonlinearHb(const SystemModel& model, const SystemNhbO
         "the model has no damping (no mesh damping or damping_ratio, no element damping): the "
         "periodic response is unbounded at every resonance the range crosses, and the "
         "continuation may climb a vertical branch or loop; give the meshes a damping_ratio");
-    if (!out.summary.ok() && curve.undamped_resonance_omega == 0.0 && !curve.points.empty()) {
-      out.summary.message += " (the model has no damping; " +
-                             NameResonantMode(model, curve.points.back().omega / kTwoPi,
-                                              hb.period_multiple, curve.harmonics_used) +
-                             ")";
-    }
+    // (No mode is named here: away from a vertical branch the nearest (mode, harmonic) pair
+    // among all H harmonics is a coincidence, not a diagnosis.)
+    if (!out.summary.ok()) out.summary.message += " (the model has no damping)";
   }
   if (curve.undamped_resonance_omega > 0.0) {
     out.summary.message += "; " + NameResonantMode(model, curve.undamped_resonance_omega / kTwoPi,
