@@ -89,6 +89,9 @@ int RunNonlinearHb(const HbCommandOptions& opts, const Scene& scene, const Scene
   options.hb.harmonics =
       settings.harmonics > 0 ? settings.harmonics : (by_tolerance ? 0 : kNonlinearDefaultHarmonics);
   options.hb.harmonic_tolerance = settings.tolerance;
+  // Folds are located to the tighter of the engine default and the user's tolerance.
+  options.continuation.fold_tolerance =
+      std::min(options.continuation.fold_tolerance, settings.tolerance);
   options.hb.stability = StabilityMethod(opts.stability);
   options.hb.monodromy_steps = opts.monodromy_steps;
   options.start_hz = frequencies.front();

@@ -91,6 +91,7 @@ std::vector<double> ParseMeshFrequencies(const std::string& spec, double nominal
                        "--mesh-frequency: hi must exceed lo for n = " << n << " points");
   std::vector<double> out(n);
   for (int i = 0; i < n; ++i) out[i] = n == 1 ? lo : lo + (hi - lo) * i / (n - 1);
+  if (n > 1) out.back() = hi;  // exactly the requested end (lo + (hi − lo) may round)
   return out;
 }
 

@@ -108,6 +108,8 @@ json MakeNhbReport(const std::string& scene_source, const NhbRunInfo& info,
   report["points"] = points;
   report["folds_hz"] = FiniteArray(curve.fold_frequencies_hz.data(),
                                    static_cast<Eigen::Index>(curve.fold_frequencies_hz.size()));
+  report["fold_errors_hz"] = FiniteArray(curve.fold_errors_hz.data(),
+                                         static_cast<Eigen::Index>(curve.fold_errors_hz.size()));
   json jumps = json::array();
   for (const SystemNhbJump& j : curve.jumps) {
     jumps.push_back({{"direction", j.up_sweep ? "up" : "down"},
@@ -204,8 +206,12 @@ std::string FormatNhbText(const json& report) {
     }
   }
   if (!report["folds_hz"].empty()) {
-    os << "folds [Hz]:";
-    for (const auto& f : report["folds_hz"]) os << " " << Num(Get(f));
+    os << "folds [Hz] (estimated error of locating each):";
+    const json& errors = report["fold_errors_hz"];
+    for (size_t i = 0; i < report["folds_hz"].size(); ++i) {
+      os << " " << Num(Get(report["folds_hz"][i]));
+      if (i < errors.size()) os << " (±" << Num(Get(errors[i])) << ")";
+    }
     os << "\n";
   }
   if (report["jumps"].empty()) {

@@ -34,9 +34,9 @@ inline constexpr int kNhbCsvHarmonics = 5;
 /// rms_dte_m, peak_to_peak_dte_m, mean_dte_m, dte_amplitudes_m (all H+1: |mean| then harmonics
 /// 1…H [m]), mean_force_n, rms_force_n, min_force_n, max_force_n, contact_loss_fraction,
 /// back_contact}], elements: [{name, mean_force, rms_force} (6 components, N and N·m)]}],
-/// "folds_hz", "jumps": [{direction ("up"/"down"), mesh_frequency_hz, rms_dte_before_m,
-/// rms_dte_after_m (null when no landing branch was traced)}], "wall_time_s".
-/// Non-finite numbers are written as null.
+/// "folds_hz", "fold_errors_hz" (estimated error of locating each fold [Hz]), "jumps": [{direction
+/// ("up"/"down"), mesh_frequency_hz, rms_dte_before_m, rms_dte_after_m (null when no landing branch
+/// was traced)}], "wall_time_s". Non-finite numbers are written as null.
 nlohmann::json MakeNhbReport(const std::string& scene_source, const NhbRunInfo& info,
                              const SystemNhbCurve& curve,
                              const std::vector<std::string>& scene_warnings);

@@ -101,6 +101,22 @@ TEST(HbNonlinearCommandTest, TraceAcrossThePrimaryResonanceFoldShowsTheJump) {
   EXPECT_EQ(report["harmonics"], 16);
   const json& points = report["points"];
   ASSERT_GE(points.size(), static_cast<std::size_t>(kResolution));
+  // The sweep starts at the requested start exactly; it ends at the requested end exactly
+  // unless the branch turns back at the fold inside the range and leaves it below the start
+  // (as here: after the up-sweep fold the upper branch runs down in frequency), which a
+  // warning says (issue 13).
+  EXPECT_EQ(points.front()["mesh_frequency_hz"].get<double>(), kLoHz);
+  bool turned_back = false;
+  for (const json& w : report["warnings"]) {
+    turned_back = turned_back || w.get<std::string>().find("turned back") != std::string::npos;
+  }
+  EXPECT_TRUE(turned_back || points.back()["mesh_frequency_hz"].get<double>() == kHiHz);
+  // Every fold located to the default fold tolerance (1e-8 relative, below --tolerance 1e-4).
+  ASSERT_EQ(report["fold_errors_hz"].size(), report["folds_hz"].size());
+  for (std::size_t k = 0; k < report["folds_hz"].size(); ++k) {
+    EXPECT_LE(report["fold_errors_hz"][k].get<double>(),
+              1e-8 * report["folds_hz"][k].get<double>());
+  }
 
   int unstable = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {

@@ -43,6 +43,27 @@ constexpr int kTangentRefinements = 5;
 /// Corrector fallback at fixed Ω only while the unit tangent advances in Ω by at least this
 /// (scaled) fraction: near a fold a fixed-Ω solve has no solution or lands on the other branch.
 constexpr double kFallbackTangentOmega = 0.2;
+/// Undamped resonance: the response norm ‖x‖ doubled (kUndampedGrowth) while every point since
+/// stayed within kUndampedBand·|Ω| of the frequency where the growth began, without a fold (a
+/// vertical branch). A damped resonance of damping ratio ζ changes its amplitude by at most
+/// √(1 + (δ/ζ)²) over a relative detuning δ, so doubling within 10⁻³ needs ζ < 6·10⁻⁴; an
+/// undamped one (A ∝ 1/δ) doubles within 10⁻³ once it is within 2·10⁻³ of the resonance.
+constexpr double kUndampedGrowth = 2.0;
+constexpr double kUndampedBand = 1e-3;
+/// Two located folds of the same kind are the same fold when their Ω agree within kSameFold
+/// (relative; above the fold tolerance and the sampled AFT's repeatability, ~1e-6 on the rig,
+/// far below the distance of distinct folds) and their RMS within kSameFoldRms.
+constexpr double kSameFold = 1e-5;
+constexpr double kSameFoldRms = 1e-3;
+/// ... and the trace went farther than kLoopSpan·|Ω| from the fold in between.
+constexpr double kLoopSpan = 1e-2;
+
+std::string OmegaText(const NhbContinuationOptions& c, double omega) {
+  if (c.omega_text) return c.omega_text(omega);
+  std::ostringstream s;
+  s << std::setprecision(10) << "Omega = " << omega;
+  return s.str();
+}
 
 NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options,
                             const NhbContinuationOptions& c, int H) {
@@ -65,7 +86,8 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   long newton = solver.Newton(x, omega, &status, &rn);
   if (status != Status::kSuccess) {
     curve.summary.status = status;
-    curve.summary.message = "no solution at omega_start (Newton ‖R‖∞ = " + std::to_string(rn) + ")";
+    curve.summary.message = "no solution at the start, " + OmegaText(c, omega) +
+                            " (Newton ‖R‖∞ = " + std::to_string(rn) + ")";
     return curve;
   }
   const double sx = c.x_scale > 0 ? c.x_scale : std::max(x.norm(), 1e-12);
@@ -167,6 +189,11 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   history[0] << x, omega;
   std::vector<double> history_s{0.0};
   bool tangent_predictor = false;  // after a rejected step: the first-order predictor
+  std::vector<NhbFold> located;    // folds located during the trace
+  long fold_evaluations = 0;
+  // Undamped-resonance watch: Ω and ‖x‖ where the current narrow frequency band began.
+  double band_omega = omega;
+  double band_norm = x.norm();
   while (static_cast<int>(curve.points.size()) < c.max_points) {
     // The step taken: ds, capped so that the predicted |ΔΩ| ≤ max_omega_step.
     double step = ds;
@@ -327,7 +354,9 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
       if (ds < c.min_step) {
         curve.summary.status = Status::kNotConverged;
         curve.summary.message =
-            "continuation step fell below min_step at Ω = " + std::to_string(omega);
+            "continuation step fell below min_step at " + OmegaText(c, omega) +
+            " (the corrector does not converge on any smaller step: a bifurcation, a grazing "
+            "contact or an ill-posed problem)";
         break;
       }
       continue;
@@ -345,25 +374,138 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
       history.push_back(std::move(y));
       tangent_predictor = false;
     }
+    if ((oc - c.omega_end) * direction >= 0) {
+      // The step reached or passed the end of the range: the last point is the solution at
+      // exactly omega_end, by Newton at fixed Ω from the linear interpolation of the step.
+      const double w = (c.omega_end - omega) / (oc - omega);
+      VectorX x_end = x + w * (xc - x);
+      Status end_status;
+      double end_res = 0.0;
+      const long end_it = solver.Newton(x_end, c.omega_end, &end_status, &end_res);
+      newton += end_it;
+      if (end_status != Status::kSuccess) {
+        curve.summary.status = end_status;
+        curve.summary.message = "no solution at the end of the range, " +
+                                OmegaText(c, c.omega_end) +
+                                " (Newton ‖R‖∞ = " + std::to_string(end_res) + ")";
+        break;
+      }
+      const double chord = std::hypot((x_end - x).norm() / sx, (c.omega_end - omega) / so);
+      assemble(x_end, c.omega_end, t);
+      lu.compute(B);
+      ++factorisations;
+      t = tangent();
+      x = x_end;
+      omega = c.omega_end;
+      record(x, omega, static_cast<int>(end_it), end_res);
+      steps.push_back(chord);
+      break;
+    }
+    if ((t_new[m] > 0) != (t[m] > 0)) {
+      // A fold between the last point and this one: located to fold_tolerance.
+      VectorX ya(m + 1), yb(m + 1);
+      ya << x, omega;
+      yb << xc, oc;
+      const internal::FoldLocation loc = internal::LocateFold(
+          solver, ya, t, yb, sx, so, tol, c.fold_tolerance, c.max_corrector_iterations);
+      fold_evaluations += loc.evaluations;
+      if (std::isfinite(loc.error)) {
+        // A closed branch (an isola, or the loops of an undamped system): the trace comes back
+        // to a fold it has located before, and would cycle until max_points.
+        NhbPoint at_fold;
+        solver.Describe(loc.y.head(m), loc.y[m], at_fold);
+        // The loop must have left the fold's neighbourhood: the sampled AFT's micro-zigzags
+        // put folds of the same kind within ~1e-4 Ω of each other (see folds.cpp).
+        auto left_fold = [&](const NhbFold& f) {
+          for (size_t i = static_cast<size_t>(f.index) + 1; i < curve.points.size(); ++i) {
+            if (std::abs(curve.points[i].omega - f.omega) > kLoopSpan * std::abs(f.omega)) {
+              return true;
+            }
+          }
+          return false;
+        };
+        const auto seen = std::find_if(located.begin(), located.end(), [&](const NhbFold& f) {
+          return f.omega_maximum == (t[m] > 0) &&
+                 std::abs(f.omega - loc.omega) <= kSameFold * std::abs(loc.omega) &&
+                 std::abs(f.rms - at_fold.rms[0]) <= kSameFoldRms * std::abs(f.rms) && left_fold(f);
+        });
+        if (seen != located.end()) {
+          std::ostringstream msg;
+          msg << "the branch closed on itself: it came back to the fold at "
+              << OmegaText(c, seen->omega) << " after "
+              << static_cast<long>(curve.points.size()) - 1 - seen->index
+              << " more points (a closed loop, e.g. of an undamped system); the end of the "
+              << "range is not on it";
+          curve.summary.status = Status::kNotConverged;
+          curve.summary.message = msg.str();
+          break;
+        }
+        const NhbPoint& at = at_fold;
+        NhbFold fold;
+        fold.omega = loc.omega;
+        fold.omega_error = loc.error;
+        fold.located = loc.converged;
+        fold.rms = at.rms[0];
+        fold.maximum = at.maximum[0];
+        fold.minimum = at.minimum[0];
+        fold.index = static_cast<int>(curve.points.size()) - 1;
+        fold.omega_maximum = t[m] > 0;
+        located.push_back(fold);
+      }
+    }
     x = xc;
     omega = oc;
     t = t_new;
-    if ((omega - c.omega_end) * direction > 0) break;  // passed the end of the range
     if ((omega - c.omega_start) * direction < -0.5 * std::abs(c.omega_end - c.omega_start)) {
-      curve.summary.warnings.push_back("curve turned back below omega_start; stopped");
+      curve.summary.warnings.push_back(
+          "the curve turned back past the start of the range (at " + OmegaText(c, omega) +
+          ", half the range beyond the start): stopped before the end of the range");
       break;
     }
     record(x, omega, it + 1, res);
     steps.push_back(step);
+    {
+      // Undamped resonance: a vertical branch (see kUndampedGrowth).
+      const double norm = x.norm();
+      const bool fold = curve.points.size() >= 2 &&
+                        (curve.points[curve.points.size() - 2].tangent_omega > 0) != (t[m] > 0);
+      if (fold || std::abs(omega - band_omega) > kUndampedBand * std::abs(band_omega)) {
+        band_omega = omega;
+        band_norm = norm;
+      } else if (norm > kUndampedGrowth * band_norm) {
+        std::ostringstream msg;
+        msg << std::setprecision(3) << "undamped resonance near " << OmegaText(c, omega)
+            << ": the response grew " << norm / band_norm << "-fold while the frequency stayed "
+            << "within " << 100 * kUndampedBand << " % (a vertical branch: nothing damps "
+            << "this resonance, and the periodic response grows without bound); add damping";
+        curve.summary.status = Status::kNotConverged;
+        curve.summary.message = msg.str();
+        curve.undamped_resonance_omega = omega;
+        break;
+      }
+    }
     // Chord iterations (smooth residual) contract linearly: one more correction is normal.
     const int extra = smooth ? 1 : 0;
     if (it <= 1 + extra) ds = std::min(ds * 1.5, c.max_step);
     if (it >= 4 + extra) ds = std::max(ds * 0.7, c.min_step);
   }
-  if (static_cast<int>(curve.points.size()) >= c.max_points) {
-    curve.summary.warnings.push_back("max_points reached before omega_end");
+  if (static_cast<int>(curve.points.size()) >= c.max_points && curve.summary.ok()) {
+    // The range was not covered: not a result.
+    curve.summary.status = Status::kNotConverged;
+    curve.summary.message = "max_points (" + std::to_string(c.max_points) + ") reached at " +
+                            OmegaText(c, omega) + " before the end of the range, " +
+                            OmegaText(c, c.omega_end);
   }
-  internal::FindFoldsAndJumps(curve, steps, so);
+  internal::FindFoldsAndJumps(curve, steps, so, located);
+  for (const NhbFold& fold : curve.folds) {
+    if (!fold.located) {
+      std::ostringstream w;
+      w << std::setprecision(3) << "fold near " << OmegaText(c, fold.omega)
+        << " not located to fold_tolerance " << c.fold_tolerance << " (estimated relative error "
+        << fold.omega_error / std::abs(fold.omega) << ")";
+      curve.summary.warnings.push_back(w.str());
+    }
+  }
   // The worst conditioning of the condensation along the curve, once.
   const NhbPoint* worst = nullptr;
   for (const NhbPoint& pt : curve.points) {
@@ -372,8 +514,8 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   if (worst != nullptr && worst->condensation_rcond < kNhbIllConditioned) {
     std::ostringstream w;
     w << std::setprecision(3) << "nonlinear HB: ill-conditioned condensation (estimated 1/cond "
-      << "down to " << worst->condensation_rcond << " at Omega = " << worst->omega
-      << " rad/s): an undamped linear resonance? Expect lost digits";
+      << "down to " << worst->condensation_rcond << " at " << OmegaText(c, worst->omega)
+      << "): an undamped linear resonance? Expect lost digits";
     curve.summary.warnings.push_back(w.str());
   }
   // A point whose multipliers came out non-finite has no verdict (issue 12): the curve's status
@@ -402,6 +544,7 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   curve.summary.counters["factorisations"] = factorisations;
   curve.summary.counters["newton_fallbacks"] = fallbacks;
   curve.summary.counters["folds"] = static_cast<long>(curve.folds.size());
+  curve.summary.counters["fold_solves"] = fold_evaluations;
   curve.summary.counters["harmonics"] = H;
   return curve;
 }

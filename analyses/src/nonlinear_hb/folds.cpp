@@ -1,6 +1,7 @@
 /// @file
 /// @brief Fold and jump extraction. A fold lies between points i and i+1 where dΩ/ds changes
-/// sign; its Ω is the cubic Hermite interpolant of Ω(s) (values and slopes at both points) at
+/// sign; it is the one located by LocateFold (fold_location.cpp) during the trace, or, when that
+/// failed, Ω is the cubic Hermite interpolant of Ω(s) (values and slopes at both points) at
 /// the zero of the linearly interpolated slope; other quantities are interpolated linearly.
 /// A fold where Ω has a local maximum ends the branch an up-sweep follows (jump of an up-sweep),
 /// a local minimum one of a down-sweep. The landing branch is the stable crossing of Ω_fold
@@ -21,10 +22,18 @@ constexpr int kFlickerPoints = 8;
 
 }  // namespace
 
-void FindFoldsAndJumps(NhbCurve& curve, const std::vector<double>& steps, double omega_scale) {
+void FindFoldsAndJumps(NhbCurve& curve, const std::vector<double>& steps, double omega_scale,
+                       const std::vector<NhbFold>& located) {
   auto& pts = curve.points;
   for (size_t i = 0; i < pts.size(); ++i) {
     if (i > 0 && (pts[i - 1].tangent_omega > 0) != (pts[i].tangent_omega > 0)) {
+      const auto found = std::find_if(located.begin(), located.end(), [&](const NhbFold& f) {
+        return f.index == static_cast<int>(i - 1);
+      });
+      if (found != located.end() && found->located) {
+        curve.folds.push_back(*found);
+        continue;
+      }
       const NhbPoint& a = pts[i - 1];
       const NhbPoint& b = pts[i];
       const double ds = steps[i];
@@ -40,6 +49,12 @@ void FindFoldsAndJumps(NhbCurve& curve, const std::vector<double>& steps, double
       fold.minimum = Lerp(a.minimum[0], b.minimum[0], w);
       fold.index = static_cast<int>(i - 1);
       fold.omega_maximum = a.tangent_omega > 0;
+      fold.omega_error = fold.omega_maximum ? std::abs(fold.omega - std::max(a.omega, b.omega))
+                                            : std::abs(fold.omega - std::min(a.omega, b.omega));
+      if (found != located.end() && found->omega_error < fold.omega_error) {
+        // The locator missed the tolerance but still improved on the interpolation.
+        fold = *found;
+      }
       curve.folds.push_back(fold);
     }
   }
@@ -52,6 +67,17 @@ void FindFoldsAndJumps(NhbCurve& curve, const std::vector<double>& steps, double
     const NhbFold& f0 = curve.folds[i];
     const NhbFold& f1 = curve.folds[i + 1];
     if (std::abs(f0.omega - f1.omega) < kFoldMergeTolerance * std::abs(f0.omega)) {
+      // The surviving neighbours of the cluster are only known to within its span: their error
+      // estimates grow to it (and they no longer count as located to the tolerance).
+      for (size_t k : {i - 1, i + 2}) {
+        if ((k == i - 1 && i == 0) || k >= curve.folds.size()) continue;
+        NhbFold& f = curve.folds[k];
+        const double span = std::max(std::abs(f.omega - f0.omega), std::abs(f.omega - f1.omega));
+        if (span < kFoldMergeTolerance * std::abs(f.omega) && span > f.omega_error) {
+          f.omega_error = span;
+          f.located = false;
+        }
+      }
       curve.folds.erase(curve.folds.begin() + i, curve.folds.begin() + i + 2);
       if (i > 0) --i;
     } else {

@@ -103,6 +103,8 @@ bool NhbContinuationOptions::IsValid(std::string* why) const {
     s << "max_omega_step: must be finite and ≥ 0 (0 = no cap), got " << max_omega_step;
   else if (x_scale < 0 || omega_scale < 0)
     s << "x_scale/omega_scale: must be ≥ 0";
+  else if (!(fold_tolerance > 0 && fold_tolerance <= 0.1))
+    s << "fold_tolerance: must be in (0, 0.1], got " << fold_tolerance;
   else
     return true;
   return Fail(why, s.str());

@@ -3,10 +3,12 @@
 /// engine of nonlinear_hb.hpp on MakeSystemNhbProblem, outputs by SystemPointDescriber.
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <numbers>
 #include <sstream>
 
+#include "geardyn/analyses/modal.hpp"
 #include "geardyn/analyses/system_nonlinear_hb.hpp"
 #include "geardyn/common/check.hpp"
 #include "system_nhb/system_outputs.hpp"
@@ -15,6 +17,45 @@ namespace geardyn {
 namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+/// "mesh frequency 562.3456 Hz" for Ω = 2π f_m [rad/s] (messages speak the CLI's units).
+std::string MeshFrequencyText(double omega) {
+  std::ostringstream s;
+  s << std::setprecision(10) << "mesh frequency " << omega / kTwoPi << " Hz";
+  return s.str();
+}
+
+/// The mode of the model (mean mesh stiffness) that harmonic j = 1..H of the base frequency
+/// f_m/p is nearest to at f_m, as a sentence for the undamped-resonance message.
+std::string NameResonantMode(const SystemModel& model, double mesh_hz, int period_multiple,
+                             int harmonics) {
+  ModalOptions mo;
+  mo.compute_shapes = false;
+  const ModalResult modes = ComputeModes(model, mo);
+  int best_mode = -1, best_j = 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < modes.frequencies_hz.size(); ++i) {
+    const double f = modes.frequencies_hz[i];
+    if (!(f > 0.0)) continue;
+    for (int j = 1; j <= harmonics; ++j) {
+      const double d = std::abs(j * mesh_hz / period_multiple - f) / f;
+      if (d < best) {
+        best = d;
+        best_mode = static_cast<int>(i);
+        best_j = j;
+      }
+    }
+  }
+  std::ostringstream s;
+  s << std::setprecision(6);
+  if (best_mode < 0) return "no elastic mode found to name";
+  s << "nearest: mode " << best_mode + 1 << " at " << modes.frequencies_hz[best_mode] << " Hz";
+  if (!modes.labels.empty()) s << " (" << ToString(modes.labels[best_mode]) << ")";
+  s << ", met by harmonic " << best_j << " of the " << (period_multiple > 1 ? "base" : "mesh")
+    << " frequency (" << best_j * mesh_hz / period_multiple << " Hz; the nonlinear branch's "
+    << "frequency differs from the mean-stiffness mode's by the clearance nonlinearity)";
+  return s.str();
+}
 
 void CheckOptions(const SystemNhbOptions& options) {
   std::string why;
@@ -52,18 +93,44 @@ SystemNhbCurve TraceSystemNonlinearHb(const SystemModel& model, const SystemNhbO
   NhbContinuationOptions c = options.continuation;
   c.omega_start = kTwoPi * options.start_hz;
   c.omega_end = kTwoPi * options.end_hz;
+  if (!c.omega_text) c.omega_text = MeshFrequencyText;
   const NhbCurve curve = TraceNonlinearHarmonicBalance(sp.problem, hb, c);
 
   SystemNhbCurve out;
   out.harmonics_used = curve.harmonics_used;
   out.period_multiple = hb.period_multiple;
   out.summary = curve.summary;
+  if (sp.problem.damping.isZero(0.0)) {
+    // Said first: every resonance crossed is unbounded, and a failed trace is explained by it.
+    out.summary.warnings.insert(
+        out.summary.warnings.begin(),
+        "the model has no damping (no mesh damping or damping_ratio, no element damping): the "
+        "periodic response is unbounded at every resonance the range crosses, and the "
+        "continuation may climb a vertical branch or loop; give the meshes a damping_ratio");
+    // (No mode is named here: away from a vertical branch the nearest (mode, harmonic) pair
+    // among all H harmonics is a coincidence, not a diagnosis.)
+    if (!out.summary.ok()) out.summary.message += " (the model has no damping)";
+  }
+  if (curve.undamped_resonance_omega > 0.0) {
+    out.summary.message += "; " + NameResonantMode(model, curve.undamped_resonance_omega / kTwoPi,
+                                                   hb.period_multiple, curve.harmonics_used);
+  }
   for (const std::string& w : sp.warnings) out.summary.warnings.push_back(w);
   internal::SystemPointDescriber describer(model, sp, hb, options.compute_element_forces,
                                            options.keep_response);
   out.points.reserve(curve.points.size());
   for (const NhbPoint& p : curve.points) out.points.push_back(describer.Describe(p));
-  for (const NhbFold& f : curve.folds) out.fold_frequencies_hz.push_back(f.omega / kTwoPi);
+  // The ends as requested (2π f / 2π may differ from f in the last bit).
+  if (!out.points.empty() && curve.points.front().omega == c.omega_start) {
+    out.points.front().mesh_frequency_hz = options.start_hz;
+  }
+  if (!out.points.empty() && curve.points.back().omega == c.omega_end) {
+    out.points.back().mesh_frequency_hz = options.end_hz;
+  }
+  for (const NhbFold& f : curve.folds) {
+    out.fold_frequencies_hz.push_back(f.omega / kTwoPi);
+    out.fold_errors_hz.push_back(f.omega_error / kTwoPi);
+  }
   for (const NhbJump& j : curve.jumps) {
     SystemNhbJump sj;
     sj.up_sweep = j.up_sweep;

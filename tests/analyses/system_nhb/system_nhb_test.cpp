@@ -78,6 +78,29 @@ TEST(SystemNonlinearHb, FullContactEqualsLinearHarmonicBalance) {
   }
 }
 
+// Issue 13: a sweep over [a, b] ends at exactly b, in both directions, and its last point is
+// the periodic solution there (truth: the single-frequency solve, a different path).
+TEST(SystemNonlinearHb, SweepEndsAtTheRequestedMeshFrequency) {
+  const SystemModel model = testing::KbRigSliceModel();
+  for (auto [a, b] : {std::pair{800.0, 1000.0}, std::pair{1000.0, 800.0}}) {
+    SystemNhbOptions o = Options(8);
+    o.hb.stability = NhbStabilityMethod::kNone;
+    o.start_hz = a;
+    o.end_hz = b;
+    o.continuation.max_step = 0.1;
+    o.continuation.initial_step = 0.01;
+    const SystemNhbCurve curve = TraceSystemNonlinearHb(model, o);
+    ASSERT_TRUE(curve.summary.ok()) << curve.summary.BriefReport();
+    EXPECT_EQ(curve.points.front().mesh_frequency_hz, a);
+    EXPECT_EQ(curve.points.back().mesh_frequency_hz, b);
+    Summary summary;
+    const SystemNhbPoint single = SolveSystemNonlinearHb(model, b, o, &summary);
+    ASSERT_TRUE(summary.ok()) << summary.BriefReport();
+    const double rms = single.meshes.at(0).rms_dte;
+    EXPECT_NEAR(curve.points.back().meshes.at(0).rms_dte, rms, 1e-8 * rms);
+  }
+}
+
 // u = P q: the recovered system response reproduces every harmonic of the mesh coordinates, and
 // its DTE harmonics agree with the sampled ones (Parseval on the RMS).
 TEST(SystemNonlinearHb, RecoveredResponseReproducesMeshCoordinates) {

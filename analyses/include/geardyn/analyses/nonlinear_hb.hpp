@@ -273,8 +273,10 @@ struct NhbSolveResult {
 
 /// @brief Pseudo-arclength continuation options.
 struct NhbContinuationOptions {
-  double omega_start = 0.5;          ///< First Ω (a solve from the contact-branch guess).
-  double omega_end = 1.5;            ///< The trace stops once Ω passes this value.
+  double omega_start = 0.5;  ///< First Ω (a solve from the contact-branch guess).
+  /// Last Ω: the step that would pass it is replaced by a solve at exactly omega_end, the last
+  /// point of the curve (unless the curve turns back or fails before).
+  double omega_end = 1.5;
   double initial_step = 0.01;        ///< Arclength step in scaled units (see below).
   double min_step = 1e-6;            ///< Smaller step after failures → stop, kNotConverged.
   double max_step = 0.05;            ///< Largest arclength step.
@@ -289,6 +291,13 @@ struct NhbContinuationOptions {
   /// (x_scale = max(‖x_start‖, 1e-12·…), omega_scale = |omega_end − omega_start|).
   double x_scale = 0.0;
   double omega_scale = 0.0;
+  /// Relative tolerance of the located folds: every fold (sign change of dΩ/ds) is located by
+  /// regula falsi on dΩ/dσ of the bordered system until its estimated error
+  /// (NhbFold::omega_error) is ≤ fold_tolerance·|Ω_fold|; in (0, 0.1].
+  double fold_tolerance = 1e-8;
+  /// Formats an Ω for messages and warnings in the caller's units (e.g. "mesh frequency
+  /// 562.3 Hz" for Ω = 2π f_m); empty: "Omega = <value>" in the problem's units.
+  std::function<std::string(double omega)> omega_text;
   /// Called after every traced point with (points so far, its Ω); empty: none. Never called
   /// concurrently; it must not throw.
   std::function<void(int points, double omega)> progress;
@@ -298,12 +307,18 @@ struct NhbContinuationOptions {
   bool IsValid(std::string* why) const;
 };
 
-/// @brief A fold (turning point): sign change of dΩ/ds, interpolated between two points.
+/// @brief A fold (turning point): sign change of dΩ/ds, located between two traced points to
+/// NhbContinuationOptions::fold_tolerance.
 struct NhbFold {
-  double omega = 0.0;          ///< Ω at the fold.
-  double rms = 0.0;            ///< RMS of coordinate 0 at the fold.
-  double maximum = 0;          ///< max of coordinate 0 at the fold.
-  double minimum = 0;          ///< min of coordinate 0 at the fold.
+  double omega = 0.0;  ///< Ω at the fold.
+  double rms = 0.0;    ///< RMS of coordinate 0 at the fold.
+  double maximum = 0;  ///< max of coordinate 0 at the fold.
+  double minimum = 0;  ///< min of coordinate 0 at the fold.
+  /// Estimated |error| of omega from locating the fold (not the truncation error of H): the
+  /// last correction of the fold locator, or, when the locator failed (located = false), the
+  /// distance of the Hermite-interpolated Ω from the nearer traced point.
+  double omega_error = 0.0;
+  bool located = false;        ///< omega_error ≤ fold_tolerance·|omega| (see above).
   int index = 0;               ///< Index of the point just before the fold.
   bool omega_maximum = false;  ///< Ω has a local maximum here (an up-sweep jump point).
 };
@@ -325,6 +340,9 @@ struct NhbCurve {
   std::vector<NhbFold> folds;
   std::vector<NhbJump> jumps;
   int harmonics_used = 0;  ///< H.
+  /// Ω where the trace stopped on a vertical branch (an undamped resonance: the response
+  /// doubled within 0.1 % of Ω without a fold; summary.status kNotConverged); 0 when none.
+  double undamped_resonance_omega = 0.0;
   Summary summary;  ///< error_estimate: max point error_estimate; counters: points, newton, folds.
 };
 

@@ -136,6 +136,8 @@ struct SystemNhbJump {
 struct SystemNhbCurve {
   std::vector<SystemNhbPoint> points;  ///< in arclength order
   std::vector<double> fold_frequencies_hz;
+  /// Estimated |error| of each fold frequency from locating it (NhbFold::omega_error) [Hz].
+  std::vector<double> fold_errors_hz;
   std::vector<SystemNhbJump> jumps;
   int harmonics_used = 0;   ///< H
   int period_multiple = 1;  ///< p (base frequency ω_m/p)
