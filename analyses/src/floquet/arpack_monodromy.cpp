@@ -157,12 +157,13 @@ Propagator PiecewisePropagator(const StateSystem& sys, int ncv) {
 Propagator MagnusPropagator(const StateSystem& sys, int order, int steps) {
   Propagator p;
   p.dim = sys.dim;
-  const double h = sys.period_s / steps;
-  for (int j = 0; j < steps; ++j) {
-    p.dense.push_back(MagnusStepPropagator(sys, order, j * h, h, &p.evaluations));
+  double t = 0.0;
+  for (const double end : MagnusGrid(sys, steps)) {
+    p.dense.push_back(MagnusStepPropagator(sys, order, t, end - t, &p.evaluations));
+    t = end;
   }
-  p.steps = steps;
-  p.num_factors = steps;
+  p.steps = static_cast<long>(p.dense.size());
+  p.num_factors = static_cast<double>(p.dense.size());
   return p;
 }
 
@@ -339,13 +340,14 @@ FloquetResult ArpackMonodromyFloquet(const StateSystem& sys, const FloquetOption
                              sys.period_s);
       evaluations += fine_prop.evaluations;
       const int m = std::min<int>(nev, static_cast<int>(fine.multipliers.size()));
-      const double ratio = static_cast<double>(n2) / n1;
+      const double ratio = static_cast<double>(fine_prop.steps) / static_cast<double>(prop.steps);
       const bool fine_ok = fine.arnoldi.ok;
       const double difference = fine_ok ? MatchedDistance(fine.multipliers.head(m), run.multipliers)
                                         : std::numeric_limits<double>::infinity();
       // The observed order (magnus.cpp ObservedOrder): jumps or kinks lower it below p.
-      const double q =
-          ObservedOrder(previous_difference, difference, previous_n, n1, options.magnus_order);
+      const int coarse_steps = static_cast<int>(prop.steps);
+      const double q = ObservedOrder(previous_difference, difference, previous_n, coarse_steps,
+                                     options.magnus_order);
       const double err = ratio > 1.0 ? difference / (std::pow(ratio, q) - 1.0)
                                      : std::numeric_limits<double>::infinity();
       prop = std::move(fine_prop);
@@ -366,7 +368,7 @@ FloquetResult ArpackMonodromyFloquet(const StateSystem& sys, const FloquetOption
               ? std::clamp(1.2 * std::pow(err / options.tolerance, 1.0 / q), 1.5, 16.0)
               : 4.0;
       previous_difference = difference;
-      previous_n = n1;
+      previous_n = coarse_steps;
       n1 = n2;
       n2 = static_cast<int>(std::min<double>(kMaxMagnusSteps, std::ceil(n2 * grow)));
     }

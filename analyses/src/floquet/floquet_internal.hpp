@@ -52,6 +52,9 @@ struct StateSystem {
   std::vector<SparseMatrix> sparse_step_matrices;
   /// A(t) into *A (dim × dim, sized by the caller); empty when the system has no callback/steps.
   std::function<void(double t, MatrixX* A)> evaluate;
+  /// Where A(t) is not smooth [s]: sorted, distinct, in (0, T) (0 and T are always step ends);
+  /// from PeriodicSecondOrderSystem::kinks_s and the step starts (MagnusGrid).
+  std::vector<double> kinks;
   /// Hill: A_m, m = 0 … N (dim × dim), A(t) = Σ A_m e^{imΩt}.
   std::vector<MatrixXc> harmonics;
   std::vector<std::string> warnings;
@@ -118,7 +121,14 @@ MergedSteps MergeEqualSteps(const StateSystem& sys);
 /// @brief kExactSteps: Π expm(A_k Δt_k), consecutive equal steps merged, a repeating pattern
 /// raised to its power by squaring.
 MonodromyOutcome ExactStepsMonodromy(const StateSystem& sys);
-/// @brief kMagnus: Gauss–Legendre Magnus of `order` (4, 6) on `steps` equal steps.
+/// @brief The step ends t_1 < … < t_N = T (t_0 = 0 implied) of a Magnus run of about `steps`
+/// steps: equal steps T/steps while they are fewer than the smooth pieces between sys.kinks (each
+/// step then spans kinks anyway); else every piece [k_j, k_{j+1}) gets max(1, round(steps·w_j/T))
+/// equal steps, so that no step straddles a kink and the nominal order holds (issue 12: a
+/// 256-sample table stiffness at low speed had observed order 1 and hit the step cap).
+std::vector<double> MagnusGrid(const StateSystem& sys, int steps);
+/// @brief kMagnus: Gauss–Legendre Magnus of `order` (4, 6) on the MagnusGrid of about `steps`
+/// steps (out.steps: the actual count).
 MonodromyOutcome MagnusMonodromyFixed(const StateSystem& sys, int order, int steps);
 /// @brief One Magnus step exponential expm(Ω) over [t0, t0 + h] (order 4 or 6); adds the A(t)
 /// evaluations to *evaluations.
@@ -146,6 +156,10 @@ MonodromyOutcome MagnusMonodromy(const StateSystem& sys, int order, double toler
 /// @brief The observed convergence order [-] from the differences d₀ (runs N₀, N₁) and d₁ (N₁,
 /// N₂), clamped to [1, order]; 1 when d₀ is unknown (first comparison) or not usable.
 double ObservedOrder(double previous_difference, double difference, int n0, int n1, int order);
+/// @brief The observed order [-] from three runs n0 < n1 < n2 (any ratios): d01 = ‖Φ(n1) −
+/// Φ(n0)‖, d12 = ‖Φ(n2) − Φ(n1)‖, fitted to e(N) = C N^−q, clamped to [1, order]; 1 when a
+/// difference is not positive or the counts are not increasing.
+double ObservedOrderOfThree(double d01, double d12, long n0, long n1, long n2, int order);
 /// @brief kOdeStepper: GSL rk8pd on the fundamental matrix, two tolerances.
 MonodromyOutcome OdeMonodromy(const StateSystem& sys, double tolerance);
 

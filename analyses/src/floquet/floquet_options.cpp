@@ -2,10 +2,14 @@
 #include <cmath>
 #include <sstream>
 
+#include "floquet/floquet_internal.hpp"
 #include "geardyn/analyses/floquet.hpp"
 #include "geardyn/common/errors.hpp"
 
 namespace geardyn {
+namespace {
+constexpr int kMaxArpackIterations = 100000;  // implicit restarts (ARPACK iparam[2])
+}  // namespace
 
 const char* ToString(FloquetMethod method) {
   switch (method) {
@@ -48,19 +52,30 @@ bool FloquetOptions::IsValid(std::string* why) const {
     os << "hill_harmonics: must be in [0, 199] (0 = automatic; a Hill matrix of dim·(2H+1) rows "
           "is limited to 800), got "
        << hill_harmonics;
-  } else if (num_modes < 0) {
-    os << "num_modes: must be >= 0, got " << num_modes;
+  } else if (num_modes < 0 || num_modes > internal::kMaxBasisModes) {
+    os << "num_modes: must be in [0, " << internal::kMaxBasisModes
+       << "] (0 = automatic; the projection is checked with up to 2.25·num_modes modes, each "
+          "run a Floquet analysis of a 2·num_modes state), got "
+       << num_modes;
   } else if (magnus_order != 4 && magnus_order != 6) {
     os << "magnus_order: must be 4 or 6, got " << magnus_order;
-  } else if (magnus_steps < 0) {
-    os << "magnus_steps: must be >= 0, got " << magnus_steps;
+  } else if (magnus_steps < 0 || magnus_steps > internal::kMaxMagnusSteps) {
+    // The automatic step choice stops at the same cap (magnus.cpp).
+    os << "magnus_steps: must be in [0, " << internal::kMaxMagnusSteps << "] (0 = automatic), got "
+       << magnus_steps
+       << "; every step costs 2-3 evaluations of K(θ), C(θ) and a dense exponential of the "
+          "2n x 2n state, about 25·(2n)³ flops (arpack_monodromy also stores (2n)² doubles per "
+          "step)";
   } else if (arpack_nev < 1) {
     os << "arpack_nev: must be >= 1, got " << arpack_nev;
   } else if (arpack_ncv != 0 && arpack_ncv < arpack_nev + 2) {
     os << "arpack_ncv: must be 0 (automatic) or >= arpack_nev + 2 = " << arpack_nev + 2 << ", got "
        << arpack_ncv;
-  } else if (arpack_max_iterations < 1) {
-    os << "arpack_max_iterations: must be >= 1, got " << arpack_max_iterations;
+  } else if (arpack_max_iterations < 1 || arpack_max_iterations > kMaxArpackIterations) {
+    os << "arpack_max_iterations: must be in [1, " << kMaxArpackIterations
+       << "] (every restart applies the monodromy up to arpack_ncv times, each a propagation "
+          "over the whole period), got "
+       << arpack_max_iterations;
   } else if (modal_projection_min_dofs < 1) {
     os << "modal_projection_min_dofs: must be >= 1, got " << modal_projection_min_dofs;
   } else {

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <limits>
 #include <unsupported/Eigen/MatrixFunctions>
+#include <vector>
 
 #include "floquet/floquet_internal.hpp"
 #include "geardyn/common/check.hpp"
@@ -54,21 +55,44 @@ MatrixX MagnusStepPropagator(const StateSystem& sys, int order, double t0, doubl
   return Omega.exp();
 }
 
+std::vector<double> MagnusGrid(const StateSystem& sys, int steps) {
+  GEARDYN_DEMAND(steps >= 1);
+  const double T = sys.period_s;
+  std::vector<double> ends;
+  const int pieces = static_cast<int>(sys.kinks.size()) + 1;
+  if (steps < pieces) {
+    // Steps longer than the smooth pieces: every step spans kinks whatever the grid.
+    for (int j = 1; j <= steps; ++j) ends.push_back(j == steps ? T : T * j / steps);
+    return ends;
+  }
+  double begin = 0.0;
+  for (int k = 0; k < pieces; ++k) {
+    const double end = k + 1 < pieces ? sys.kinks[k] : T;
+    const double w = end - begin;
+    const int m = std::max(1, static_cast<int>(std::lround(steps * w / T)));
+    for (int j = 1; j <= m; ++j) ends.push_back(j == m ? end : begin + w * j / m);
+    begin = end;
+  }
+  return ends;
+}
+
 MonodromyOutcome MagnusMonodromyFixed(const StateSystem& sys, int order, int steps) {
   GEARDYN_THROW_UNLESS(static_cast<bool>(sys.evaluate),
                        "method: magnus needs the coefficients callback (or steps)");
   GEARDYN_DEMAND(order == 4 || order == 6);
   const int N = sys.dim;
-  const double h = sys.period_s / steps;
+  const std::vector<double> ends = MagnusGrid(sys, steps);
   MonodromyOutcome out;
   out.phi = ScaledMatrix{MatrixX::Identity(N, N), 0.0};
-  for (int j = 0; j < steps; ++j) {
-    const MatrixX E = MagnusStepPropagator(sys, order, j * h, h, &out.evaluations);
+  double t = 0.0;
+  for (const double end : ends) {
+    const MatrixX E = MagnusStepPropagator(sys, order, t, end - t, &out.evaluations);
     out.phi.matrix = E * out.phi.matrix;
     out.phi.Normalize();
+    t = end;
   }
-  out.steps = steps;
-  out.num_factors = steps;
+  out.steps = static_cast<long>(ends.size());
+  out.num_factors = static_cast<double>(ends.size());
   return out;
 }
 
@@ -134,12 +158,29 @@ MonodromyOutcome MagnusMonodromy(const StateSystem& sys, int order, double toler
   while (true) {
     MonodromyOutcome fine = MagnusMonodromyFixed(sys, order, n2);
     evaluations += fine.evaluations;
-    const double ratio = static_cast<double>(n2) / n1;
+    // The actual counts (MagnusGrid rounds to the kink pieces) set the step ratio.
+    const double ratio = static_cast<double>(fine.steps) / static_cast<double>(coarse.steps);
     const double difference = RelativeDifference(fine.phi, coarse.phi);
-    const double p = ObservedOrder(previous_difference, difference, previous_n, n1, order);
+    double p = ObservedOrder(previous_difference, difference, previous_n,
+                             static_cast<int>(coarse.steps), order);
     // A non-finite difference (an overflowing coarse run) is "not converged", never "done".
-    const double err = ratio > 1.0 ? difference / (std::pow(ratio, p) - 1.0)
-                                   : std::numeric_limits<double>::infinity();
+    double err = ratio > 1.0 ? difference / (std::pow(ratio, p) - 1.0)
+                             : std::numeric_limits<double>::infinity();
+    if (!(err <= tolerance) && n2 >= kMaxMagnusSteps && previous_n == 0 && n2 - n1 >= 2 &&
+        std::isfinite(difference)) {
+      // The cap came at the first comparison, where the order is unknown and taken as 1 (a
+      // 2^p − 1 = 63× more pessimistic divisor than order 6). Measure it instead with a run
+      // between the two counts (finer than the coarse one, so inside the series' radius too):
+      // two differences give the order (issue 12: the helical pair at 5 rpm stopped here at
+      // "observed order 1").
+      const MonodromyOutcome mid = MagnusMonodromyFixed(sys, order, n1 + (n2 - n1) / 2);
+      evaluations += mid.evaluations;
+      p = ObservedOrderOfThree(RelativeDifference(mid.phi, coarse.phi),
+                               RelativeDifference(fine.phi, mid.phi), coarse.steps, mid.steps,
+                               fine.steps, order);
+      err = ratio > 1.0 ? difference / (std::pow(ratio, p) - 1.0)
+                        : std::numeric_limits<double>::infinity();
+    }
     if (err <= tolerance || n2 >= kMaxMagnusSteps) {
       fine.truncation_error = std::isnan(err) ? std::numeric_limits<double>::infinity() : err;
       fine.evaluations = evaluations;
@@ -156,11 +197,31 @@ MonodromyOutcome MagnusMonodromy(const StateSystem& sys, int order, double toler
     const double grow =
         std::isfinite(err) ? std::clamp(1.2 * std::pow(err / tolerance, 1.0 / p), 1.5, 16.0) : 4.0;
     previous_difference = difference;
-    previous_n = n1;
+    previous_n = static_cast<int>(coarse.steps);
     n1 = n2;
     coarse = std::move(fine);
     n2 = static_cast<int>(std::min<double>(kMaxMagnusSteps, std::ceil(n2 * grow)));
   }
+}
+
+double ObservedOrderOfThree(double d01, double d12, long n0, long n1, long n2, int order) {
+  // e(N) = C N^−q: d01 = C (n0^−q − n1^−q), d12 = C (n1^−q − n2^−q); their ratio g(q) grows
+  // with q (2^q for n1 = 2 n0, n2 = 2 n1: ObservedOrder), so bisect g(q) = d01/d12 on [1, order].
+  if (!(d01 > 0.0) || !(d12 > 0.0) || !(n0 < n1 && n1 < n2)) return 1.0;
+  const double x0 = static_cast<double>(n0), x1 = static_cast<double>(n1),
+               x2 = static_cast<double>(n2);
+  auto g = [&](double q) {
+    return (std::pow(x0, -q) - std::pow(x1, -q)) / (std::pow(x1, -q) - std::pow(x2, -q));
+  };
+  const double target = d01 / d12;
+  double lo = 1.0, hi = static_cast<double>(order);
+  if (!(target > g(lo))) return lo;
+  if (target >= g(hi)) return hi;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (g(mid) < target ? lo : hi) = mid;
+  }
+  return lo;
 }
 
 double ObservedOrder(double previous_difference, double difference, int n0, int n1, int order) {

@@ -34,6 +34,7 @@ namespace geardyn::internal {
 PeriodicSecondOrderSystem ProjectSystem(const PeriodicSecondOrderSystem& system, const MatrixX& V) {
   PeriodicSecondOrderSystem out;
   out.period_s = system.period_s;
+  out.kinks_s = system.kinks_s;
   out.mass = V.transpose() * system.mass * V;
   out.mass = 0.5 * (out.mass + out.mass.transpose()).eval();
   for (const PeriodicStep& s : system.steps) {

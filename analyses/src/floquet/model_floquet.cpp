@@ -85,6 +85,9 @@ PeriodicSecondOrderSystem MakeModelSystem(const SystemModel& model, double omega
     s.coefficients = [assembler, V, omega_m](double t, MatrixX* K, MatrixX* C) {
       assembler->Eval(omega_m * t, V, K, C);
     };
+    // Where K(θ), C(θ) jump or kink (steps, table samples): Magnus ends its steps there.
+    const VectorX kinks = CollectSystemKinks(model, operator_period);
+    for (const double theta : kinks) s.kinks_s.push_back(theta / omega_m);
   }
   if (method == FloquetMethod::kHill) {
     const int dim = 2 * (projected ? static_cast<int>(V.cols()) : model.num_dofs());

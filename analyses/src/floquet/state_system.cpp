@@ -99,6 +99,30 @@ StateSystem MakeStateSystem(const PeriodicSecondOrderSystem& system, bool deflat
   StateSystem out;
   out.num_dofs = n;
   out.period_s = T;
+  {
+    // Non-smooth points strictly inside (0, T): the given kinks and the step starts, sorted and
+    // merged within 1e-12·T (0 and T end every grid anyway).
+    std::vector<double> kinks;
+    for (std::size_t k = 0; k < system.kinks_s.size(); ++k) {
+      const double t = system.kinks_s[k];
+      GEARDYN_THROW_UNLESS(
+          std::isfinite(t) && t >= 0.0 && t < T,
+          "kinks_s[" << k << "]: must be in [0, period_s = " << T << "), got " << t);
+      kinks.push_back(t);
+    }
+    double start = 0.0;
+    for (const PeriodicStep& s : system.steps) {
+      kinks.push_back(start);
+      start += s.duration_s;
+    }
+    std::sort(kinks.begin(), kinks.end());
+    const double gap = 1e-12 * T;
+    for (const double t : kinks) {
+      if (t > gap && t < T - gap && (out.kinks.empty() || t - out.kinks.back() > gap)) {
+        out.kinks.push_back(t);
+      }
+    }
+  }
 
   // Samples of K and C: the steps, else 16 callback samples, else the mean harmonic.
   std::vector<MatrixX> Ks, Cs;

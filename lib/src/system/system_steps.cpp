@@ -1,7 +1,10 @@
 #include "geardyn/system/system_steps.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <variant>
+#include <vector>
 
 #include "geardyn/common/check.hpp"
 #include "mesh_coefficients.hpp"
@@ -63,6 +66,48 @@ SystemSteps CollectSystemSteps(const SystemModel& model, double merge_tol) {
   steps.breakpoints =
       Eigen::Map<const VectorX>(merged.data(), static_cast<Eigen::Index>(merged.size()));
   return steps;
+}
+
+VectorX CollectSystemKinks(const SystemModel& model, std::int64_t period_meshes, double merge_tol) {
+  CheckSingleMeshFrequency(model, "CollectSystemKinks");
+  GEARDYN_THROW_UNLESS(period_meshes >= 1,
+                       "CollectSystemKinks: period_meshes must be >= 1, got " << period_meshes);
+  GEARDYN_THROW_UNLESS(std::isfinite(merge_tol) && merge_tol >= 0.0,
+                       "CollectSystemKinks: merge_tol must be finite and >= 0, got " << merge_tol);
+  const double period = 2.0 * std::numbers::pi * static_cast<double>(period_meshes);
+  std::vector<double> points;
+  for (const SystemMesh& mesh : model.meshes()) {
+    for (const Coefficient* coef : internal::MeshOperatorCoefficients(mesh.core, false)) {
+      // Mesh-phase points of one own period 2π·P_c: steps' interval starts, tables' samples.
+      std::vector<double> own_points;
+      std::int64_t own = 1;
+      if (const auto* steps = std::get_if<PiecewiseConstantCoefficient>(coef)) {
+        own = steps->period_meshes();
+        for (int k = 0; k < steps->num_intervals(); ++k)
+          own_points.push_back(steps->interval_begin(k));
+      } else if (const auto* table = std::get_if<TableCoefficient>(coef)) {
+        own = table->period_meshes();
+        const double own_period = 2.0 * std::numbers::pi * static_cast<double>(own);
+        for (int s = 0; s < table->num_samples(); ++s) {
+          own_points.push_back(own_period * s / table->num_samples());
+        }
+      } else {
+        continue;  // constant or Fourier: analytic everywhere
+      }
+      const double own_period = 2.0 * std::numbers::pi * static_cast<double>(own);
+      const std::int64_t copies = std::max<std::int64_t>(1, period_meshes / own);
+      for (std::int64_t j = 0; j < copies; ++j) {
+        for (const double b : own_points) {
+          // θ = θ_k − φ_k, reduced to [0, 2π·P).
+          const double theta =
+              std::fmod(b + own_period * static_cast<double>(j) - mesh.phase_offset, period);
+          points.push_back(theta < 0.0 ? theta + period : theta);
+        }
+      }
+    }
+  }
+  const std::vector<double> merged = internal::SortAndMerge(std::move(points), period, merge_tol);
+  return Eigen::Map<const VectorX>(merged.data(), static_cast<Eigen::Index>(merged.size()));
 }
 
 }  // namespace geardyn

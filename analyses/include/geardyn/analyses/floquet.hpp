@@ -107,14 +107,18 @@ struct FloquetOptions {
   /// gives the size, memory and flops), so H ≤ 199 in any case.
   int hill_harmonics = 0;
   /// kModalProjection: number of LTI modes kept, the lowest ones (0 = automatic: the modes that
-  /// can resonate with f_m and the mesh modes first, widened until the tolerance is met).
+  /// can resonate with f_m and the mesh modes first, widened until the tolerance is met); at most
+  /// 1500, and clamped to n.
   int num_modes = 0;
   /// Keep the 2n×2n monodromy in the result (not formed by every method).
   bool keep_monodromy = false;
   /// kMagnus: order 4 (2 Gauss nodes) or 6 (3 Gauss nodes) [-].
   int magnus_order = 6;
-  /// kMagnus: fixed number of steps per period (0 = chosen from the tolerance by step doubling;
-  /// a fixed count skips the error estimate: error_estimate is then the round-off estimate only).
+  /// kMagnus: fixed number of steps per period, at most 65 536 (the automatic cap; 0 = chosen
+  /// from the tolerance by step doubling; a fixed count skips the error estimate: error_estimate
+  /// is then the round-off estimate only). With kinks in K(θ) (tables, steps) the count is
+  /// rounded to whole steps per smooth piece once it exceeds the number of pieces (the actual
+  /// count is counters["steps"]).
   int magnus_steps = 0;
   /// kArpackMonodromy: number of largest-|λ| multipliers wanted, 1 ≤ nev ≤ 2n [-] (a state of
   /// dimension < nev + 2 returns all its multipliers).
@@ -122,7 +126,7 @@ struct FloquetOptions {
   /// kArpackMonodromy: number of Arnoldi vectors ncv, 0 → min(dim, max(2·nev + 1, 20)); else
   /// nev + 2 ≤ ncv (capped at the state dimension) [-].
   int arpack_ncv = 0;
-  /// kArpackMonodromy: maximum number of implicit restarts (ARPACK iparam[2]) ≥ 1 [-].
+  /// kArpackMonodromy: maximum number of implicit restarts (ARPACK iparam[2]), 1 … 100 000 [-].
   int arpack_max_iterations = 1000;
   /// kAuto: systems with at least this many DOFs (after the block split) use kModalProjection.
   int modal_projection_min_dofs = 200;

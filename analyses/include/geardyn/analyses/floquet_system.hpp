@@ -69,6 +69,11 @@ struct PeriodicSecondOrderSystem {
   /// Fourier form for kHill: K_m, C_m, m = 0 … N (C may be empty for C = 0).
   std::vector<MatrixXc> stiffness_harmonics;
   std::vector<MatrixXc> damping_harmonics;
+  /// Times t ∈ [0, T) [s] where the callback's K(t) or C(t) is not smooth (jumps, or the kinks of
+  /// linearly interpolated tables), in any order. kMagnus and kArpackMonodromy end their steps on
+  /// them once the steps are shorter than the gaps, so a kink costs no order (issue 12). Empty:
+  /// smooth. The step starts of `steps` are added automatically.
+  std::vector<double> kinks_s;
 
   /// n.
   int num_dofs() const { return static_cast<int>(mass.rows()); }

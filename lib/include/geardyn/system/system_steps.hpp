@@ -57,4 +57,18 @@ bool HasPiecewiseConstantOperator(const SystemModel& model);
 ///   (Fourier or table: use a smooth-coefficient method), naming the mesh.
 SystemSteps CollectSystemSteps(const SystemModel& model, double merge_tol = 1e-13);
 
+/// @brief The phases where K(θ) or C(θ) is not smooth, over one period 2π·period_meshes of the
+/// system phase: the breakpoints of piecewise-constant coefficients (jumps) and the samples of
+/// table coefficients (their periodic linear interpolation has a kink at every sample); constant,
+/// Fourier and mean-LTI coefficients add none. Between two consecutive points K and C are
+/// analytic in θ, so a time stepper whose steps end on them keeps its nominal order (Floquet's
+/// kink-aware Magnus, issue 12). Same phase convention as CollectSystemSteps (θ_k = θ + φ_k).
+/// @param[in] period_meshes P ≥ 1 [-]: a multiple of every operator coefficient's period (e.g.
+///   the operator period P_K of Floquet).
+/// @param[in] merge_tol relative distance below which two points are one [-], ≥ 0.
+/// @return (K ≥ 1) sorted points in [0, 2π·P) [rad], b_0 = 0 (added when no coefficient has it).
+/// @throws InvalidInput if a mesh's phase ratio is not 1, P < 1 or merge_tol < 0.
+VectorX CollectSystemKinks(const SystemModel& model, std::int64_t period_meshes,
+                           double merge_tol = 1e-13);
+
 }  // namespace geardyn
