@@ -6,8 +6,8 @@
 //   contact) by pseudo-arclength continuation over lo..hi of --mesh-frequency; the n of lo:hi:n
 //   is the resolution: a continuation step changes the mesh frequency by at most 1/n of the
 //   range (NhbContinuationOptions::max_omega_step), so the curve has at least about n points;
-//   along resonances and folds the tangent angle and the corrector place more. One frequency: a single periodic solution. Files nhb.json,
-//   nhb.csv, nhb_rms_dte.svg (nhb_report.hpp).
+//   along resonances and folds the tangent angle and the corrector place more. One frequency: a
+//   single periodic solution. Files nhb.json, nhb.csv, nhb_rms_dte.svg (nhb_report.hpp).
 // * Linear (--linear, or no slice mesh): SweepHarmonicBalance on the listed frequencies (slice
 //   meshes linearized with every slice loaded). Files hb.json, hb.csv, hb_rms_dte.svg. Unless
 //   --stability none, every point carries the Floquet verdict of the homogeneous system at its
@@ -121,8 +121,7 @@ int RunNonlinearHb(const HbCommandOptions& opts, const Scene& scene, const Scene
     // rig's 200-point request (issue 13).
     options.continuation.max_omega_step =
         2.0 * std::numbers::pi * std::abs(options.end_hz - options.start_hz) / n;
-    options.continuation.initial_step =
-        std::min(options.continuation.initial_step, 1.0 / n);
+    options.continuation.initial_step = std::min(options.continuation.initial_step, 1.0 / n);
     options.continuation.max_points = std::max(options.continuation.max_points, 20 * n);
     auto last_line = std::chrono::steady_clock::now() - std::chrono::hours(1);
     int last_points = 0;
@@ -160,9 +159,10 @@ int RunNonlinearHb(const HbCommandOptions& opts, const Scene& scene, const Scene
   const std::string json_text = report.dump(2) + "\n";
   Emit(opts, json_text, FormatNhbText(report),
        {{"nhb.json", json_text},
-        {"nhb.csv", FormatNhbCsv(curve)},
+        {"nhb.csv", FormatNhbCsv(curve, opts.stability != "none")},
         {"nhb_rms_dte.svg",
-         RenderNhbPlot(curve, "RMS DTE (nonlinear harmonic balance): " + scene.source)}},
+         RenderNhbPlot(curve, "RMS DTE (nonlinear harmonic balance): " + scene.source,
+                       opts.stability != "none")}},
        out);
   return curve.summary.ok() ? int{kExitOk} : int{kExitNumericalIssue};
 }

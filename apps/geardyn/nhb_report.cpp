@@ -72,13 +72,15 @@ json MakeNhbReport(const std::string& scene_source, const NhbRunInfo& info,
     json p;
     p["mesh_frequency_hz"] = Finite(r.mesh_frequency_hz);
     p["branch"] = r.point.branch;
-    // true / false, null when undetermined (a non-finite multiplier or a failed point).
-    p["stable"] = r.point.stable == FloquetVerdict::kUndetermined
+    // true / false, null when undetermined (a non-finite multiplier or a failed point) or not
+    // computed (--stability none: no verdict is printed for a computation that did not run).
+    const bool computed = info.stability != "none";
+    p["stable"] = !computed || r.point.stable == FloquetVerdict::kUndetermined
                       ? json(nullptr)
                       : json(r.point.stable == FloquetVerdict::kStable);
-    p["verdict"] = ToString(r.point.stable);
-    p["max_multiplier"] = Finite(r.point.max_multiplier);
-    p["error_estimate"] = Finite(r.point.error_estimate);
+    p["verdict"] = computed ? ToString(r.point.stable) : "not computed";
+    p["max_multiplier"] = computed ? Finite(r.point.max_multiplier) : json(nullptr);
+    p["error_estimate"] = computed ? Finite(r.point.error_estimate) : json(nullptr);
     p["status"] = StatusName(r.point.status);
     json meshes = json::array();
     for (const SystemNhbMeshOutput& m : r.meshes) {
@@ -122,7 +124,7 @@ json MakeNhbReport(const std::string& scene_source, const NhbRunInfo& info,
   return report;
 }
 
-std::string FormatNhbCsv(const SystemNhbCurve& curve) {
+std::string FormatNhbCsv(const SystemNhbCurve& curve, bool stability_computed) {
   static const char* const kComponents[6] = {"fx_n", "fy_n", "fz_n", "mx_nm", "my_nm", "mz_nm"};
   std::ostringstream os;
   os << "mesh_frequency_hz,branch,stable,max_multiplier,error_estimate,status";
@@ -143,10 +145,12 @@ std::string FormatNhbCsv(const SystemNhbCurve& curve) {
   os << "\n";
   for (const SystemNhbPoint& r : curve.points) {
     os << Num(r.mesh_frequency_hz) << "," << r.point.branch << ","
-       << (r.point.stable == FloquetVerdict::kStable     ? "1"
+       << (!stability_computed                           ? ""
+           : r.point.stable == FloquetVerdict::kStable   ? "1"
            : r.point.stable == FloquetVerdict::kUnstable ? "0"
                                                          : "nan")
-       << "," << Num(r.point.max_multiplier) << "," << Num(r.point.error_estimate) << ","
+       << "," << (stability_computed ? Num(r.point.max_multiplier) : std::string()) << ","
+       << (stability_computed ? Num(r.point.error_estimate) : std::string()) << ","
        << StatusName(r.point.status);
     for (const SystemNhbMeshOutput& m : r.meshes) {
       os << "," << Num(m.rms_dte) << "," << Num(m.peak_to_peak_dte) << "," << Num(m.mean_dte);
@@ -190,16 +194,22 @@ std::string FormatNhbText(const json& report) {
   if (!points.empty() && rows.back() + 1 != points.size()) rows.push_back(points.size() - 1);
   for (const std::size_t i : rows) {
     const auto& p = points[i];
+    // max|μ|: "-" when not computed (--stability none) or not finite.
+    char multiplier[32] = "-";
+    if (p["max_multiplier"].is_number()) {
+      std::snprintf(multiplier, sizeof(multiplier), "%.6f", Get(p["max_multiplier"]));
+    }
     for (const auto& m : p["meshes"]) {
       std::snprintf(line, sizeof(line),
-                    "%12.2f %6d %-8s %10.6f  %-16s %11.5g %11.5g %11.5g %11.5g %11.5g %5.1f%%%s\n",
+                    "%12.2f %6d %-8s %10s  %-16s %11.5g %11.5g %11.5g %11.5g %11.5g %5.1f%%%s\n",
                     Get(p["mesh_frequency_hz"]), p["branch"].get<int>(),
-                    p["verdict"] == "stable"     ? "yes"
-                    : p["verdict"] == "unstable" ? "no"
-                                                 : "undetermined",
-                    Get(p["max_multiplier"]), m["name"].get<std::string>().c_str(),
-                    1e6 * Get(m["rms_dte_m"]), 1e6 * Get(m["peak_to_peak_dte_m"]),
-                    Get(m["mean_force_n"]), Get(m["min_force_n"]), Get(m["max_force_n"]),
+                    p["verdict"] == "stable"         ? "yes"
+                    : p["verdict"] == "unstable"     ? "no"
+                    : p["verdict"] == "not computed" ? "-"
+                                                     : "undetermined",
+                    multiplier, m["name"].get<std::string>().c_str(), 1e6 * Get(m["rms_dte_m"]),
+                    1e6 * Get(m["peak_to_peak_dte_m"]), Get(m["mean_force_n"]),
+                    Get(m["min_force_n"]), Get(m["max_force_n"]),
                     100.0 * Get(m["contact_loss_fraction"]),
                     p["status"].get<std::string>() == "success" ? "" : "  (!)");
       os << line;
@@ -232,7 +242,8 @@ std::string FormatNhbText(const json& report) {
   return os.str();
 }
 
-std::string RenderNhbPlot(const SystemNhbCurve& curve, const std::string& title) {
+std::string RenderNhbPlot(const SystemNhbCurve& curve, const std::string& title,
+                          bool stability_computed) {
   static const std::string kCurveColour = "#1f77b4";
   PlotSpec spec;
   spec.title = title;
@@ -253,13 +264,14 @@ std::string RenderNhbPlot(const SystemNhbCurve& curve, const std::string& title)
         continue;
       }
       const double x = r.mesh_frequency_hz, y = 1e6 * r.meshes.front().rms_dte;
-      const bool stable = r.point.stable == FloquetVerdict::kStable;  // undetermined: dashed
+      // Undetermined: dashed. Not computed (--stability none): solid, without a legend.
+      const bool stable = !stability_computed || r.point.stable == FloquetVerdict::kStable;
       if (!have_previous || panel.series.back().dashed == stable) {
         PlotSeries run;
         run.colour = kCurveColour;
         run.dashed = !stable;
         bool& labelled = stable ? labelled_stable : labelled_unstable;
-        if (!labelled) run.label = stable ? "stable" : "unstable (dashed)";
+        if (!labelled && stability_computed) run.label = stable ? "stable" : "unstable (dashed)";
         labelled = true;
         if (have_previous) {
           run.x.push_back(previous_x);

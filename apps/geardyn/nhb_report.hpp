@@ -46,7 +46,9 @@ nlohmann::json MakeNhbReport(const std::string& scene_source, const NhbRunInfo& 
 /// ":mean_dte_m", ":a1_m" … ":a5_m" (harmonics 1…5 of f_m/p; empty beyond H), ":mean_force_n",
 /// ":rms_force_n", ":min_force_n", ":max_force_n", ":contact_loss_fraction", ":back_contact" (0/1),
 /// then per element "<element>:mean_fx_n" … ":mean_mz_nm" and ":rms_fx_n" … ":rms_mz_nm".
-std::string FormatNhbCsv(const SystemNhbCurve& curve);
+/// stable, max_multiplier and error_estimate are empty when !stability_computed (--stability none);
+/// stable is nan when undetermined.
+std::string FormatNhbCsv(const SystemNhbCurve& curve, bool stability_computed = true);
 
 /// @brief A text table of at most ~60 points (evenly decimated, the last point always kept; one
 /// line per mesh), the folds, the jump list and the warnings.
@@ -56,6 +58,7 @@ std::string FormatNhbText(const nlohmann::json& report);
 /// solid segments, unstable as dashed (neighbouring runs share their boundary point), every
 /// jump a grey vertical segment from the RMS before to the RMS after with circles, the one
 /// before labelled "up"/"down" and its frequency. Points without converged status are left out.
-std::string RenderNhbPlot(const SystemNhbCurve& curve, const std::string& title);
+std::string RenderNhbPlot(const SystemNhbCurve& curve, const std::string& title,
+                          bool stability_computed = true);
 
 }  // namespace geardyn::app

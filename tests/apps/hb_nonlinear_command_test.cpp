@@ -211,6 +211,20 @@ TEST(HbNonlinearCommandTest, SingleFrequencyMeanForceBalancesTheTorque) {
   EXPECT_NEAR(m["mean_force_n"].get<double>(), 100.0 / base_radius, 1e-3 * 100.0 / base_radius);
 }
 
+// --stability none skips the Floquet pass: no point may carry a verdict it never computed (the
+// struct's default used to print every point as "stable").
+TEST(HbNonlinearCommandTest, StabilityNonePrintsNoVerdict) {
+  const json report = RunJson(
+      SliceRig({"--mesh-frequency", "1440:1480:20", "--harmonics", "8", "--stability", "none"}));
+  EXPECT_EQ(report["stability"], "none");
+  ASSERT_FALSE(report["points"].empty());
+  for (const json& p : report["points"]) {
+    EXPECT_TRUE(p["stable"].is_null()) << p["mesh_frequency_hz"];
+    EXPECT_EQ(p["verdict"], "not computed") << p["mesh_frequency_hz"];
+    EXPECT_TRUE(p["max_multiplier"].is_null()) << p["mesh_frequency_hz"];
+  }
+}
+
 TEST(HbNonlinearCommandTest, SliceRigMonodromyIsExactWhateverTheSteps) {
   // The trace over the super-harmonic fold (≈ 1 475 Hz) returns along the unstable branch
   // (|μ| up to ≈ 3). The spur slice law is integrated exactly (its projected form): ∂g/∂u is

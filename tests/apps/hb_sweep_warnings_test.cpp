@@ -7,6 +7,7 @@
 #include <iomanip>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -81,6 +82,42 @@ TEST(HbCommandTest, SweepListsEachWarningOnce) {
       }
     }
     EXPECT_EQ(found, 1) << mode;
+  }
+}
+
+// The planetary's repeated (degenerate) modes give two warnings with the same text at one
+// point; the merged count is of points, so "k of N points" has k = the number of distinct points
+// that warned about that mode (truth: the library's own points), never k > N.
+TEST(HbCommandTest, RepeatedModesAreCountedOncePerPoint) {
+  const std::vector<double> freqs = {100.0, 200.0, 300.0, 400.0, 500.0, 600.0, 700.0, 800.0};
+  const nlohmann::json report = RunJson({"hb", "builtin:planetary-lin-parker", "--mesh-frequency",
+                                         "100:800:8", "--harmonics", "8", "--stability", "none"});
+  ASSERT_EQ(report["points"].size(), freqs.size());
+  const SystemModel model = MakeSystemModel(LoadScene("builtin:planetary-lin-parker"));
+  HbOptions options;
+  options.harmonics = 8;
+  const HbSweepResult sweep = SweepHarmonicBalance(model, freqs, options);
+  std::map<std::string, std::set<double>> by_mode;
+  bool twice_at_a_point = false;
+  for (const HbResult& point : sweep.points) {
+    std::map<std::string, int> here;
+    for (const std::string& w : point.summary.warnings) {
+      const std::size_t at = w.find(kUndampedText);
+      if (at == std::string::npos) continue;
+      by_mode[w.substr(at)].insert(point.mesh_frequency_hz);
+      twice_at_a_point = twice_at_a_point || ++here[w.substr(at)] > 1;
+    }
+  }
+  ASSERT_TRUE(twice_at_a_point) << "the case does not exercise a repeated mode";
+  for (const auto& w : report["warnings"]) {
+    const std::string text = w.get<std::string>();
+    for (const auto& [mode, at] : by_mode) {
+      if (text.find(mode) == std::string::npos || at.size() < 2) continue;
+      EXPECT_NE(text.find("(" + std::to_string(at.size()) + " of " + std::to_string(freqs.size()) +
+                          " points)"),
+                std::string::npos)
+          << text;
+    }
   }
 }
 

@@ -74,7 +74,8 @@ std::vector<std::string> MergePointWarnings(const std::vector<HbResult>& points)
     std::string key, first;  // the body without its leading number; the first point's text
     bool share = false;      // undamped share (max) or 1/cond (min)
     double worst = 0.0, lo = 0.0, hi = 0.0;
-    int count = 0;
+    int count = 0;  // points (not warnings: a repeated mode warns twice at a point)
+    const HbResult* last = nullptr;  // the last point counted
   };
   std::vector<Merged> merged;
   for (const HbResult& point : points) {
@@ -104,11 +105,12 @@ std::vector<std::string> MergePointWarnings(const std::vector<HbResult>& points)
           std::find_if(merged.begin(), merged.end(), [&](const Merged& m) { return m.key == key; });
       if (it == merged.end()) {
         merged.push_back({key, w, share, value, point.mesh_frequency_hz, point.mesh_frequency_hz,
-                          numbered ? 1 : 0});
+                          numbered ? 1 : 0, &point});
         continue;
       }
       if (!numbered) continue;
-      ++it->count;
+      if (it->last != &point) ++it->count;
+      it->last = &point;
       it->worst = share ? std::max(it->worst, value) : std::min(it->worst, value);
       it->lo = std::min(it->lo, point.mesh_frequency_hz);
       it->hi = std::max(it->hi, point.mesh_frequency_hz);

@@ -72,6 +72,13 @@ TEST(FloquetVerdictTest, RulesOfTheThreeValuedVerdict) {
   // Within the estimate of 1 with success: stable (an undamped system's |λ| = 1 ± round-off).
   EXPECT_EQ(Decide(Status::kSuccess, 1e-9, Values({1.0 + 1e-10, 0.5}), mu),
             FloquetVerdict::kStable);
+  // A growth below the 1e-12 floor is round-off even with a smaller estimate (the exact-steps
+  // product of an undamped pair: 1 + 1.2e-13 ± 7.7e-14); above the floor and the estimate it is
+  // a growth.
+  EXPECT_EQ(Decide(Status::kSuccess, 7.7e-14, Values({1.0 + 1.2e-13, 0.5}), mu),
+            FloquetVerdict::kStable);
+  EXPECT_EQ(Decide(Status::kSuccess, 7.7e-14, Values({1.0 + 5e-12, 0.5}), mu),
+            FloquetVerdict::kUnstable);
 }
 
 TEST(FloquetVerdictTest, NanPropagatesThroughMaxima) {

@@ -140,7 +140,8 @@ TEST(SystemNhbMonodromyReference, MultipliersMatchTheGslVariationalEquation) {
     std::printf("%.3f Hz: HB max|mu| %.8f, GSL %.8f\n", p.mesh_frequency_hz, p.point.max_multiplier,
                 reference);
     EXPECT_NEAR(p.point.max_multiplier, reference, 2e-3 * reference) << p.mesh_frequency_hz;
-    EXPECT_EQ(p.point.stable, reference < 1.0 + kMargin) << p.mesh_frequency_hz << " Hz";
+    EXPECT_EQ(p.point.stable == FloquetVerdict::kStable, reference < 1.0 + kMargin)
+        << p.mesh_frequency_hz << " Hz";
     (reference < 1.0 + kMargin ? stable : unstable) += 1;
     ++compared;
   }

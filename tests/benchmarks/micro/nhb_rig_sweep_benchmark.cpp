@@ -58,7 +58,7 @@ void Sweep(benchmark::State& state, NhbForceIntegration integration, bool omega_
   state.counters["points"] = static_cast<double>(c.points.size());
   state.counters["ok"] = c.summary.ok() ? 1.0 : 0.0;
   int unstable = 0;
-  for (const SystemNhbPoint& p : c.points) unstable += p.point.stable ? 0 : 1;
+  for (const SystemNhbPoint& p : c.points) unstable += p.point.stable == FloquetVerdict::kUnstable;
   state.counters["unstable"] = unstable;
   int index = 0;
   for (const SystemNhbJump& j : c.jumps) {
