@@ -30,8 +30,8 @@ SystemModel RigWithSmallBacklash() {
 // times a loaded slice) and O(h²) at the contact kinks, h = 2π/S: its error against the exact
 // coefficients must stay below C·h (first order): at S = 16384·H below 1e-5 of the
 // residual's scale (measured 4.7e-6), at half the samples below 2e-5 (measured 5e-7: the error
-// depends on where the steps fall between the samples). The Jacobian coefficients err by O(h) at the switches:
-// 2e-3 leaves a factor ≈ 10.
+// depends on where the steps fall between the samples). The Jacobian coefficients err by O(h) at
+// the switches: 2e-3 leaves a factor ≈ 10.
 constexpr int kFineSamplesPerHarmonic = 16384;
 constexpr double kResidualTol = 1e-5;
 constexpr double kJacobianTol = 2e-3;

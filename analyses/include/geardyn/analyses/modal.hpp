@@ -11,15 +11,15 @@
 /// copied into ModalResult::method_used:
 /// | options.method | n = num_dofs | used |
 /// |---|---|---|
-/// | kDense | any | kDense (all n modes; with vectors and 0 < num_modes < n only those, by the few-modes dense solver of symmetric_eigen_subset.hpp) |
-/// | kArpack | n ≥ 3 and num_modes' < n | kArpack (num_modes' = num_modes or 20) |
-/// | kArpack | n too small for ARPACK (it needs num_modes < ncv ≤ n) | kDense + a warning |
-/// | kAuto | n ≤ dense_max_dofs, num_modes' ≥ n/2, or n too small for ARPACK | kDense |
-/// | kAuto | otherwise | kArpack |
-/// dense_max_dofs defaults to 199 (`kDefaultDenseMaxDofs`, the model's storage hint): there a
-/// full dense solve (all modes) costs a few milliseconds; ARPACK is faster for 20 modes from
-/// about 100 DOFs on and wins by 10⁴ at 5 000 DOFs (docs/benchmarks.md, "Modal analysis"). Forcing
-/// either path always works (equivalence tests, paired benchmarks).
+/// | kDense | any | kDense (all n modes; with vectors and 0 < num_modes < n only those, by the
+/// few-modes dense solver of symmetric_eigen_subset.hpp) | | kArpack | n ≥ 3 and num_modes' < n |
+/// kArpack (num_modes' = num_modes or 20) | | kArpack | n too small for ARPACK (it needs num_modes
+/// < ncv ≤ n) | kDense + a warning | | kAuto | n ≤ dense_max_dofs, num_modes' ≥ n/2, or n too small
+/// for ARPACK | kDense | | kAuto | otherwise | kArpack | dense_max_dofs defaults to 199
+/// (`kDefaultDenseMaxDofs`, the model's storage hint): there a full dense solve (all modes) costs a
+/// few milliseconds; ARPACK is faster for 20 modes from about 100 DOFs on and wins by 10⁴ at 5 000
+/// DOFs (docs/benchmarks.md, "Modal analysis"). Forcing either path always works (equivalence
+/// tests, paired benchmarks).
 ///
 /// **Rigid-body modes** (spec 02, architecture §3.7): the one criterion of rigid_modes.hpp — an
 /// M-normalized pair with |λ| ≤ zero_tol·φᵀ diag(K̄) φ (a null vector of K̄ in the diagonally

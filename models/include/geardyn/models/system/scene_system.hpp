@@ -79,8 +79,8 @@ struct SceneSystemOptions {
   /// Build the transmission error ε of the contact-line meshes (modifications, tooth errors).
   /// False for analyses of the homogeneous operator only (modes, floquet, stability-chart): ε
   /// never enters K or C, and with tooth errors it is a table over the whole hunting period
-  /// (lcm(z_1, z_2) mesh cycles), the costliest part of the build. Meshes then load nothing through K2 ε, and
-  /// SystemModel::period_meshes() is the operator's.
+  /// (lcm(z_1, z_2) mesh cycles), the costliest part of the build. Meshes then load nothing through
+  /// K2 ε, and SystemModel::period_meshes() is the operator's.
   bool transmission_error = true;
   /// What the model is built for, named by the error when a body lacks `mass` or `inertia`
   /// (optional in a scene): "<file>:<line>: gear.pinion.mass: required by modes (mass matrix)".
