@@ -28,51 +28,21 @@
 
 #include "geardyn/common/eigen_types.hpp"
 #include "geardyn/numerics/symmetric_eigen.hpp"
+#include "support/pencils.hpp"
 
 namespace geardyn {
 namespace {
 
-struct Pencil {
-  SparseMatrix K;  // [N/m]
-  SparseMatrix M;  // [kg]
-};
-
-Pencil MakeBandedPencil(int n) {
-  std::mt19937_64 rng(0x6765617231ULL + static_cast<unsigned>(n));
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const double k = 2.0e7, m = 1.5;
-  constexpr int kHalfBandwidth = 3;
-  std::vector<Eigen::Triplet<double>> kt, mt;
-  for (int i = 0; i < n; ++i) {
-    for (int d = 1; d <= kHalfBandwidth && i + d < n; ++d) {
-      const double ki = k * (0.5 + unit(rng));
-      kt.emplace_back(i, i, ki);
-      kt.emplace_back(i + d, i + d, ki);
-      kt.emplace_back(i, i + d, -ki);
-      kt.emplace_back(i + d, i, -ki);
-    }
-  }
-  for (int i = 0; i < n; ++i) mt.emplace_back(i, i, m * (0.5 + 1.5 * unit(rng)));
-  for (int i = 0; i + 1 < n; ++i) {
-    const double mu = 0.3 * m * unit(rng) / 6.0;
-    mt.emplace_back(i, i, 2.0 * mu);
-    mt.emplace_back(i + 1, i + 1, 2.0 * mu);
-    mt.emplace_back(i, i + 1, mu);
-    mt.emplace_back(i + 1, i, mu);
-  }
-  Pencil p{SparseMatrix(n, n), SparseMatrix(n, n)};
-  p.K.setFromTriplets(kt.begin(), kt.end());
-  p.M.setFromTriplets(mt.begin(), mt.end());
-  p.K.makeCompressed();
-  p.M.makeCompressed();
-  return p;
+// The same seeded random banded pencil as the eigen tests (half-bandwidth 3, one rigid mode).
+test::Pencil MakeBandedPencil(int n) {
+  return test::MakeRandomBanded(n, /*bandwidth=*/3, 0x65617231U + static_cast<unsigned>(n));
 }
 
 int NumModes(int n) { return std::min(20, n / 2); }
 
 void BM_DenseAllModes(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
-  const Pencil p = MakeBandedPencil(n);
+  const test::Pencil p = MakeBandedPencil(n);
   const MatrixX K(p.K), M(p.M);
   for (auto _ : state) {
     GeneralizedEigenResult r = SolveGeneralizedEigenDense(K, M);
@@ -90,7 +60,7 @@ BENCHMARK(BM_DenseAllModes)->Arg(5000)->Iterations(1)->Unit(benchmark::kMillisec
 void BM_ArpackLowestModes(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   const int modes = NumModes(n);
-  const Pencil p = MakeBandedPencil(n);
+  const test::Pencil p = MakeBandedPencil(n);
   GeneralizedEigenResult last;
   for (auto _ : state) {
     last = SolveGeneralizedEigenArpack(p.K, p.M, modes);
