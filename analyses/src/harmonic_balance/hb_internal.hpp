@@ -108,4 +108,22 @@ class HbOutputSampler {
   std::vector<std::vector<Vector2>> eps_;
 };
 
+// ---------------------------------------------------------------- warnings (hb_warnings.cpp)
+
+/// Texts that mark the per-point warnings a sweep merges (after PointWarningPrefix and the
+/// varying number: undamped share [%], or 1/cond).
+inline constexpr const char* kUndampedShareText =
+    " % of the alternating response (mass-weighted) is in an undamped mode of the mean system";
+inline constexpr const char* kIllConditionedText = "ill-conditioned solve (estimated 1/cond ";
+
+/// x with 3 significant digits.
+std::string FormatG(double x);
+/// A mesh frequency in a warning [Hz]: 6 significant digits ("3287.5", not "3.29e+03").
+std::string FormatHz(double f);
+/// "harmonic balance at <f_m> Hz: ", the prefix of every per-point warning.
+std::string PointWarningPrefix(double f_m);
+/// One warning per distinct per-point warning of a sweep, with the mesh-frequency range and the
+/// number of points where it occurred, and the worst value of its number.
+std::vector<std::string> MergePointWarnings(const std::vector<HbResult>& points);
+
 }  // namespace geardyn::internal
