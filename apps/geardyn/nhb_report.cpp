@@ -229,10 +229,19 @@ std::string FormatNhbText(const json& report) {
   } else {
     os << "jumps (first mesh):\n";
     for (const auto& j : report["jumps"]) {
-      std::snprintf(line, sizeof(line), "  %-4s sweep at %10.2f Hz: RMS DTE %.5g -> %.5g um\n",
+      std::snprintf(line, sizeof(line), "  %-4s sweep at %10.2f Hz: RMS DTE %.5g um -> ",
                     j["direction"].get<std::string>().c_str(), Get(j["mesh_frequency_hz"]),
-                    1e6 * Get(j["rms_dte_before_m"]), 1e6 * Get(j["rms_dte_after_m"]));
+                    1e6 * Get(j["rms_dte_before_m"]));
       os << line;
+      // No landing value: every traced branch at this frequency is unstable (or none is
+      // traced), so the sweep lands on a response that is not a stable T-periodic orbit of
+      // this basis (subharmonic, quasi-periodic or an untraced branch).
+      if (j["rms_dte_after_m"].is_number()) {
+        std::snprintf(line, sizeof(line), "%.5g um\n", 1e6 * Get(j["rms_dte_after_m"]));
+        os << line;
+      } else {
+        os << "no stable periodic response traced at this frequency\n";
+      }
     }
   }
   if (!report["message"].get<std::string>().empty()) {

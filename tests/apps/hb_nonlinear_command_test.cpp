@@ -195,6 +195,29 @@ TEST(HbNonlinearCommandTest, TraceAcrossThePrimaryResonanceFoldShowsTheJump) {
   EXPECT_NE(svg.find("<circle"), std::string::npos);
 }
 
+// The up-sweep fold of the first super-harmonic hysteresis loop (1475 Hz) jumps into a band
+// (≈ 1476–1501 Hz) where the upper branch is unstable (a secondary instability, checked against
+// a GSL variational integration over 1440–1480 Hz in session 22): no stable T-periodic landing
+// exists. The JSON says so with a null landing RMS, and the text must say it in words instead
+// of printing "nan" (a NaN may never reach an output).
+TEST(HbNonlinearCommandTest, JumpWithoutAStableLandingBranchIsSaidInWords) {
+  const CliRun text = RunGeardyn(SliceRig({"--mesh-frequency", "1440:1520:20"}));
+  ASSERT_EQ(text.code, kExitOk) << text.err;
+  EXPECT_EQ(text.out.find("nan"), std::string::npos) << text.out;
+  EXPECT_EQ(text.out.find("inf"), std::string::npos) << text.out;
+  const CliRun run = RunGeardyn(SliceRig({"--mesh-frequency", "1440:1520:20", "--json"}));
+  ASSERT_EQ(run.code, kExitOk) << run.err;
+  const json report = json::parse(run.out);
+  ASSERT_EQ(report["jumps"].size(), 1u);
+  const json& jump = report["jumps"][0];
+  EXPECT_EQ(jump["direction"], "up");
+  EXPECT_NEAR(jump["mesh_frequency_hz"].get<double>(), 1475.13, 0.05);
+  EXPECT_TRUE(jump["rms_dte_after_m"].is_null());
+  EXPECT_NE(text.out.find("no stable periodic response traced at this frequency"),
+            std::string::npos)
+      << text.out;
+}
+
 // One frequency well below the resonance: one periodic solution. Its mean mesh force balances
 // the pinion torque (100 N·m) over the pinion base radius (damping forces have zero mean in a
 // periodic state), with the base radius from `geardyn info`.
