@@ -52,6 +52,8 @@ NhbSolver::Impl::Impl(NhbProblem problem_in, const NhbOptions& options_in, int h
   dg_h.assign(2 * H + 1, MatrixXc::Zero(n, n));
   jacobian_coefficients.resize((4 * H + 1) * n * n);
   uncondensed = problem.IsUncondensed();
+  pole_residue =
+      !uncondensed && options.condensation == NhbCondensation::kAuto && BuildPoleResidueForm();
   mass_c = problem.mass.cast<std::complex<double>>();
   damping_c = problem.damping.cast<std::complex<double>>();
   stiffness_c = problem.stiffness.cast<std::complex<double>>();

@@ -21,15 +21,19 @@ constexpr double kAngleTolerance = 4e-16 * kTwoPi;
 
 void NhbSolver::Impl::EvaluatePolynomial(const VectorXc& c, double theta, double out[3]) const {
   // v = c_0 + 2 Re Σ c_k z^k, v′ = 2 Re Σ ik c_k z^k, v″ = −2 Re Σ k² c_k z^k, z = e^{iθ}.
-  const std::complex<double> z = std::polar(1.0, theta);
-  std::complex<double> zk = 1.0;
+  // In real arithmetic (the complex products' NaN/inf branches cost as much as the sums).
+  const double zr = std::cos(theta), zi = std::sin(theta);
+  double pr = 1.0, pi = 0.0;  // z^k
   double value = c[0].real(), slope = 0.0, curvature = 0.0;
   for (int k = 1; k <= H; ++k) {
-    zk *= z;
-    const std::complex<double> term = c[k] * zk;
-    value += 2.0 * term.real();
-    slope -= 2.0 * k * term.imag();
-    curvature -= 2.0 * k * k * term.real();
+    const double qr = pr * zr - pi * zi;
+    pi = pr * zi + pi * zr;
+    pr = qr;
+    const double re = c[k].real() * pr - c[k].imag() * pi;
+    const double im = c[k].real() * pi + c[k].imag() * pr;
+    value += 2.0 * re;
+    slope -= 2.0 * k * im;
+    curvature -= 2.0 * k * k * re;
   }
   out[0] = value;
   out[1] = slope;
@@ -61,7 +65,7 @@ void NhbSolver::Impl::FindPolynomialSuperlevelSet(double level) {
   };
   crossings.clear();
   double amplitude = 0.0;  // ≥ ‖u − U₀‖∞
-  for (int k = 1; k <= H; ++k) amplitude += 2.0 * std::abs(poly[k]);
+  for (int k = 1; k <= H; ++k) amplitude += 2.0 * std::sqrt(std::norm(poly[k]));  // no hypot
   const double hH = h * H;
   const double hermite_error_bound = 2.0 * hH * hH * hH * hH / 384.0 * amplitude;  // 2× margin
   for (int s = 0; s < S; ++s) {

@@ -127,8 +127,7 @@ void NhbSolver::Impl::IntegrateProjected(const VectorX& x) {
 double NhbSolver::Impl::ProjectedMonodromyMaxMultiplier(const VectorX& x, double omega) {
   // The switches of x (the ends of every contact set) and the weights' breakpoints cut the
   // base period into pieces on which ∂g/∂u, hence A, is constant.
-  Synthesize(x);
-  IntegrateProjected(x);
+  ForceHarmonics(x, true);  // the switches of x (reused when the corrector just integrated x)
   std::vector<double> cuts = switch_angles;
   for (const NhbProjectedTerm& term : pform.terms) {
     for (Eigen::Index b = 0; b < term.breakpoints.size(); ++b) cuts.push_back(term.breakpoints[b]);

@@ -89,7 +89,10 @@ void NhbSolver::Impl::ForceHarmonics(const VectorX& x, bool jacobian) {
   Synthesize(x);
   if (exact) {
     if (projected) {
+      if (integrated_valid && integrated_x == x) return;  // g_h, dg_h of this x are current
       IntegrateProjected(x);
+      integrated_x = x;
+      integrated_valid = true;
     } else {
       IntegrateExactly(x);
     }
@@ -185,6 +188,8 @@ void NhbSolver::Describe(const VectorX& x, double omega, NhbPoint& point) {
     point.minimum[i] = s.ExtremeValue(x, i, -1.0);
   }
   point.peak_to_peak = point.maximum - point.minimum;
+  s.ForceHarmonics(x, false);
+  point.force_harmonics = s.g_h;
   point.error_estimate = total > 0 ? std::sqrt(top / total) : 0.0;
 }
 

@@ -58,7 +58,12 @@ struct NhbSolver::Impl {
   std::vector<std::pair<double, double>> intervals;  ///< Ends of {u > β}, second > first.
 
   // Exact integration of a projected law (projected_integration.cpp).
-  bool projected = false;             ///< exact via the law's NhbProjectedForm.
+  bool projected = false;  ///< exact via the law's NhbProjectedForm.
+  /// x of the last IntegrateProjected (g_h, dg_h, switch_angles are its results); valid only
+  /// while integrated_valid. The monodromy and the description of an accepted point reuse the
+  /// corrector's last integration instead of repeating it.
+  VectorX integrated_x;
+  bool integrated_valid = false;
   NhbProjectedForm pform;             ///< The law's projected form when projected.
   VectorXc poly;                      ///< (H+1) harmonics c_k of the scalar polynomial v(θ).
   VectorX poly_values, poly_slopes;   ///< (S) v and dv/dθ at the samples.
@@ -76,6 +81,22 @@ struct NhbSolver::Impl {
   double force_scale = 1.0;  ///< 1 + max ‖F̃_k‖∞ + ‖f₀‖∞ (Newton tolerance scale).
   /// Smallest estimated 1/cond of D_k and P D_k⁻¹ Pᵀ over k at cached_omega (1 uncondensed).
   double linear_rcond = 1.0;
+
+  // Pole–residue form of the receptance (nonlinear_hb.hpp, "Condensation"; linear_part.cpp).
+  bool pole_residue = false;  ///< Z_k from the form below instead of an LU of D_k.
+  VectorXc poles;             ///< λ_r (2N): eigenvalues of A = [0 I; −M⁻¹K −M⁻¹C].
+  MatrixXc residues;          ///< (n·n)×2N: column r is (P v_r)(w_rᵀ Pᵀ), column-major n×n.
+  MatrixXc force_residues;  ///< n×2N per load: (P v_r)(w_rᵀ F) for F_0 = f₀ (first n rows) and
+                            ///< F_p = f₁/2 (next n rows), i.e. (2n)×2N.
+  MatrixXc modal_top;       ///< N×2N: v_r (SolveLinear).
+  MatrixXc modal_left;      ///< 2N×N: w_rᵀ (SolveLinear).
+  VectorX residue_norms;    ///< ‖v_r‖₁ ‖w_r‖∞ (2N): bound of ‖D⁻¹‖₁ (rcond).
+  double norm_k = 0, norm_c = 0, norm_m = 0;  ///< 1-norms of K, C, M.
+  VectorXc pole_weights, pole_weights2;       ///< 1/(s − λ_r), 1/(s − λ_r)² (scratch).
+  MatrixXc receptance, d_receptance;          ///< n×n scratch: R_k, dR_k/dΩ.
+  /// Builds the pole–residue form; false (then the direct LU) when M is not SPD or V is ill
+  /// conditioned.
+  bool BuildPoleResidueForm();
 
   // Newton scratch.
   MatrixX J;

@@ -59,11 +59,14 @@ void SystemPointDescriber::Sample(const NhbPoint& point) {
 }
 
 MatrixXc SystemPointDescriber::ForceHarmonics(const NhbPoint& point) {
-  // N_k from the engine itself (exact integration or AFT, whichever solved the point).
-  const int H = static_cast<int>(point.harmonics.cols()) - 1;
-  if (!solver_ || solver_->harmonics() != H) {
-    solver_ = std::make_unique<NhbSolver>(problem_.problem, options_, H);
+  // N_k from the engine itself (exact integration or AFT, whichever solved the point): kept
+  // in the point by the engine, else integrated again.
+  if (point.force_harmonics.cols() == point.harmonics.cols() &&
+      point.force_harmonics.rows() == point.harmonics.rows()) {
+    return point.force_harmonics;
   }
+  const int H = static_cast<int>(point.harmonics.cols()) - 1;
+  Solver(H);
   const int n = static_cast<int>(point.harmonics.rows());
   VectorX x(n * (2 * H + 1));
   for (int i = 0; i < n; ++i) {
@@ -80,22 +83,21 @@ MatrixXc SystemPointDescriber::RecoverResponse(const NhbPoint& point) {
   Sample(point);
   const NhbProblem& p = problem_.problem;
   const MatrixXc Nk = ForceHarmonics(point);
-  const double w = point.omega / p_;
-  const Complex I(0.0, 1.0);
-  const MatrixXc Pt = p.projection.transpose().cast<Complex>();
-  MatrixXc Z(p.mass.rows(), H_ + 1);
-  for (int k = 0; k <= H_; ++k) {
-    const double kk = k;
-    const MatrixXc D = (-kk * kk * w * w) * p.mass.cast<Complex>() +
-                       (I * kk * w) * p.damping.cast<Complex>() + p.stiffness.cast<Complex>();
-    VectorXc rhs = -Pt * Nk.col(k);
-    if (k == 0) rhs += p.force_mean.cast<Complex>();
-    if (k == p_) rhs += 0.5 * p.force_amplitude;
-    Z.col(k) = D.partialPivLu().solve(rhs);
-  }
+  // Z_k = D_k⁻¹ (F_k − Pᵀ N_k), by the engine's linear solve (pole–residue form or LU).
+  MatrixXc rhs = -(p.projection.transpose().cast<Complex>() * Nk);
+  rhs.col(0) += p.force_mean.cast<Complex>();
+  if (p_ <= H_) rhs.col(p_) += 0.5 * p.force_amplitude;
+  const MatrixXc Z = Solver(H_).SolveLinear(point.omega, rhs);
   MatrixXc Q = problem_.reduction.cast<Complex>() * Z;
   Q.col(0) += problem_.static_response.cast<Complex>();
   return Q;
+}
+
+NhbSolver& SystemPointDescriber::Solver(int H) {
+  if (!solver_ || solver_->harmonics() != H) {
+    solver_ = std::make_unique<NhbSolver>(problem_.problem, options_, H);
+  }
+  return *solver_;
 }
 
 SystemNhbPoint SystemPointDescriber::Describe(const NhbPoint& point) {

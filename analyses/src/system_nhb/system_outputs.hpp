@@ -28,6 +28,8 @@ class SystemPointDescriber {
   void Sample(const NhbPoint& point);  ///< u_, phase_ at S_ samples per base period
   /// N_k (n × (H+1)) of `point` as the engine computes them.
   MatrixXc ForceHarmonics(const NhbPoint& point);
+  /// The engine for H (made once per H).
+  NhbSolver& Solver(int H);
 
   const SystemModel& model_;
   const SystemNhbProblem& problem_;

@@ -24,6 +24,17 @@
 /// invertible (no rigid-body mode: write a gear pair in its relative coordinate); the problem is
 /// LTI outside g — time-varying stiffness belongs in g (as the parametric term of the B&K
 /// oscillator).
+/// Pole–residue form (NhbOptions::condensation, issue 13): the continuation moves Ω at every
+/// corrector iteration, and an LU of every D_k per Ω cost more than the nonlinear force. With M
+/// symmetric positive definite, the first-order form A = [0 I; −M⁻¹K −M⁻¹C] = V Λ V⁻¹ (one
+/// eigen-decomposition per solver) gives D(s)⁻¹ = Σ_r v_r w_rᵀ / (s − λ_r), s = ikω, with v_r
+/// the top half of column r of V and w_rᵀ the bottom half of row r of V⁻¹ times M⁻¹ (exact, not
+/// a modal truncation: all 2N poles are kept). Then R_k = Σ_r (P v_r)(w_rᵀ Pᵀ)/(s − λ_r) and
+/// dR_k/dΩ = −(ik/p) Σ_r (P v_r)(w_rᵀ Pᵀ)/(s − λ_r)², O(N n²) per harmonic instead of O(N³).
+/// Used when V is well conditioned (Eigen's rcond of V ≥ 1e-6, so the round-off stays near
+/// 1e-10 relative); otherwise (a defective or nearly defective pencil: critical damping) the
+/// direct LU per harmonic. condensation_rcond is then a lower bound of 1/cond₁(D_k):
+/// 1 / ((‖K‖₁ + |s|‖C‖₁ + |s|²‖M‖₁) Σ_r ‖v_r‖₁‖w_r‖∞ / |s − λ_r|).
 ///
 /// ## AFT
 /// S = max(64, samples_per_harmonic·H) samples per base period (rounded up to even), FFTW r2c/c2r
@@ -192,6 +203,13 @@ enum class NhbForceIntegration {
   kExact,    ///< Exact integration of the piecewise-linear form (the law must give it).
 };
 
+/// How the condensed linear part Z_k = (P D_k⁻¹ Pᵀ)⁻¹ is evaluated at each Ω ("Condensation of
+/// the linear DOFs" above). Uncondensed problems (P = I) use Z_k = D_k either way.
+enum class NhbCondensation {
+  kAuto,    ///< The pole–residue form when it applies (M SPD, V well conditioned), else kDirect.
+  kDirect,  ///< An LU of every D_k at every new Ω (O(N³) per harmonic per Ω).
+};
+
 /// @brief Options of the single-frequency solve (also used by the continuation).
 struct NhbOptions {
   int harmonics = 0;                 ///< H ≥ 1; 0: chosen from harmonic_tolerance.
@@ -221,6 +239,8 @@ struct NhbOptions {
   /// Sampled AFT or exact integration of piecewise-linear laws ("Exact integration" above);
   /// switch_correction only applies to the sampled path.
   NhbForceIntegration force_integration = NhbForceIntegration::kAuto;
+  /// How the condensation's receptances P D_k⁻¹ Pᵀ are evaluated per Ω ("Condensation" above).
+  NhbCondensation condensation = NhbCondensation::kAuto;
   /// Stable iff max|μ| < 1 + stability_margin: multipliers of undamped parts that the meshes do
   /// not damp (|μ| = 1 to round-off, e.g. bearing modes orthogonal to the line of action of an
   /// undamped structure) count as (marginally) stable; ≥ 0 [-].
@@ -230,8 +250,11 @@ struct NhbOptions {
 
 /// @brief One periodic solution.
 struct NhbPoint {
-  double omega = 0.0;         ///< Excitation frequency Ω.
-  MatrixXc harmonics;         ///< n×(H+1): U_k, k = 0..H of base ω = Ω/p.
+  double omega = 0.0;  ///< Excitation frequency Ω.
+  MatrixXc harmonics;  ///< n×(H+1): U_k, k = 0..H of base ω = Ω/p.
+  /// n×(H+1): N_k, the Fourier coefficients of g(u(t), Ωt) at the solution as the residual
+  /// used them (the system outputs read them instead of integrating g again).
+  MatrixXc force_harmonics;
   VectorX mean;               ///< n: U_0.
   VectorX rms;                ///< n: RMS of u − U_0, √(2 Σ_{k≥1} |U_k|²).
   VectorX peak_to_peak;       ///< n: max − min of u over the period.
@@ -249,7 +272,8 @@ struct NhbPoint {
   int newton_iterations = 0;  ///< Newton iterations of this point.
   double residual_norm = 0;   ///< Final ‖R‖∞.
   /// Smallest estimated reciprocal condition number (Eigen's rcond) of the condensation's
-  /// inversions D_k and P D_k⁻¹ Pᵀ at Ω (1 when uncondensed); below
+  /// inversions D_k and P D_k⁻¹ Pᵀ at Ω (1 when uncondensed; for D_k a lower bound under the
+  /// pole–residue form, see "Condensation of the linear DOFs"); below
   /// kNhbIllConditioned the single solve and the curve carry a warning.
   double condensation_rcond = 1.0;
   Status status = Status::kSuccess;
@@ -368,6 +392,10 @@ class NhbSolver {
                 VectorX* d_omega);
   /// N_k (n×(H+1)): the Fourier coefficients of g(u(t), Ωt) at x, as the residual uses them.
   MatrixXc ForceHarmonics(const VectorX& x);
+  /// Response of the linear part to loads: column k of the result is D_k⁻¹ b_k (N×(H+1), b
+  /// N×(H+1)) at Ω, D_k = −k²ω²M + ikωC + K, ω = Ω/p; from the pole–residue form when the
+  /// solver condenses with it, else an LU per harmonic.
+  MatrixXc SolveLinear(double omega, const MatrixXc& b);
   /// Initial guess at Ω: the linear contact-branch response.
   VectorX ContactGuess(double omega);
   /// Newton with backtracking line search from `x` (overwritten with the solution); after three
