@@ -18,6 +18,12 @@ namespace {
 
 using C = std::complex<double>;
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
+/// Distinct values of ∂g/∂u whose eigen-decomposition is kept (spur slices take a few dozen:
+/// the contact states of the slices times the stiffness steps); beyond, Padé per piece.
+constexpr size_t kMaxPieceExponentials = 512;
+/// Smallest Eigen rcond of V for exp(A'h) = V e^{Λh} V⁻¹: its round-off is ~ε/rcond ≤ 1e-10
+/// relative, far below the stability margin (1e-5); below, Padé for that G.
+constexpr double kMinPieceEigenvectorRcond = 1e-6;
 
 /// Adds (k/2π) ∫_lo^hi e^{−ijθ} dθ, j = 0..J, to out[j].
 void AddIntervalIntegrals(double lo, double hi, double k, int J, VectorXc& out) {
@@ -124,6 +130,39 @@ void NhbSolver::Impl::IntegrateProjected(const VectorX& x) {
   }
 }
 
+const NhbSolver::Impl::PieceExponential* NhbSolver::Impl::FindPieceExponential(const MatrixX& G) {
+  for (const PieceExponential& e : piece_exponentials) {
+    if (e.G == G) return &e;
+  }
+  if (piece_exponentials.size() >= kMaxPieceExponentials) return nullptr;
+  const int N = dofs;
+  PieceExponential e;
+  e.G = G;
+  const MatrixX Minv = problem.mass.inverse();
+  MatrixX A = MatrixX::Zero(2 * N, 2 * N);
+  A.topRightCorner(N, N).diagonal().setConstant(monodromy_w0);
+  A.bottomLeftCorner(N, N) =
+      -Minv * (problem.stiffness + problem.projection.transpose() * G * problem.projection) /
+      monodromy_w0;
+  A.bottomRightCorner(N, N) = -Minv * problem.damping;
+  Eigen::EigenSolver<MatrixX> es(A, true);
+  if (es.info() == Eigen::Success) {
+    const MatrixXc V = es.eigenvectors();
+    const Eigen::PartialPivLU<MatrixXc> vlu(V);
+    if (vlu.rcond() >= kMinPieceEigenvectorRcond) {
+      const MatrixXc Vinv = vlu.inverse();
+      e.v_re = V.real();
+      e.v_im = V.imag();
+      e.vinv_re = Vinv.real();
+      e.vinv_im = Vinv.imag();
+      e.lambda = es.eigenvalues();
+      e.ok = e.lambda.allFinite() && Vinv.allFinite();
+    }
+  }
+  piece_exponentials.push_back(std::move(e));
+  return &piece_exponentials.back();
+}
+
 double NhbSolver::Impl::ProjectedMonodromyMaxMultiplier(const VectorX& x, double omega) {
   // The switches of x (the ends of every contact set) and the weights' breakpoints cut the
   // base period into pieces on which ∂g/∂u, hence A, is constant.
@@ -149,21 +188,41 @@ double NhbSolver::Impl::ProjectedMonodromyMaxMultiplier(const VectorX& x, double
   const VectorX ph = theta * double(p);
   problem.law->Evaluate(um, ph, gm, dgm);
 
+  // The balanced state y = [q; q̇/ω₀] (ω₀² = ‖K‖₁/‖M‖₁): its monodromy S Φ S⁻¹ has the same
+  // multipliers, and the eigenvectors of A' are far better conditioned than those of A.
   const int N = dofs;
   const double w = omega / p;
-  const MatrixX Minv = problem.mass.inverse();
-  const MatrixX& Pm = problem.projection;
-  MatrixX A = MatrixX::Zero(2 * N, 2 * N);
-  A.topRightCorner(N, N).setIdentity();
-  A.bottomRightCorner(N, N) = -Minv * problem.damping;
-  const MatrixX minv_k = -Minv * problem.stiffness;
-  const MatrixX minv_pt = -Minv * Pm.transpose();
-  MatrixX phi = MatrixX::Identity(2 * N, 2 * N), next(2 * N, 2 * N);
+  if (!(monodromy_w0 > 0.0)) {
+    const double km = problem.stiffness.cwiseAbs().colwise().sum().maxCoeff();
+    const double mm = problem.mass.cwiseAbs().colwise().sum().maxCoeff();
+    monodromy_w0 = km > 0.0 && mm > 0.0 && std::isfinite(km / mm) ? std::sqrt(km / mm) : 1.0;
+  }
+  MatrixX phi = MatrixX::Identity(2 * N, 2 * N), next(2 * N, 2 * N), E(2 * N, 2 * N);
+  MatrixX scaled_re(2 * N, 2 * N), scaled_im(2 * N, 2 * N);
+  MatrixX G(n, n);
   for (Eigen::Index j = 0; j < P; ++j) {
     const double h = (pieces[j].second - pieces[j].first) / w;
-    const Eigen::Map<const MatrixX> G(dgm.col(j).data(), n, n);
-    A.bottomLeftCorner(N, N) = minv_k + minv_pt * G * Pm;
-    const MatrixX E = (A * h).exp();
+    G = Eigen::Map<const MatrixX>(dgm.col(j).data(), n, n);
+    const PieceExponential* e = FindPieceExponential(G);
+    if (e != nullptr && e->ok) {
+      // exp(A'h) = Re(V e^{Λh} V⁻¹) = Re(V e^{Λh}) Re V⁻¹ − Im(V e^{Λh}) Im V⁻¹.
+      for (int c = 0; c < 2 * N; ++c) {
+        const std::complex<double> z = std::exp(e->lambda[c] * h);
+        scaled_re.col(c) = e->v_re.col(c) * z.real() - e->v_im.col(c) * z.imag();
+        scaled_im.col(c) = e->v_re.col(c) * z.imag() + e->v_im.col(c) * z.real();
+      }
+      E.noalias() = scaled_re * e->vinv_re;
+      E.noalias() -= scaled_im * e->vinv_im;
+    } else {
+      const MatrixX Minv = problem.mass.inverse();
+      MatrixX A = MatrixX::Zero(2 * N, 2 * N);
+      A.topRightCorner(N, N).diagonal().setConstant(monodromy_w0);
+      A.bottomLeftCorner(N, N) =
+          -Minv * (problem.stiffness + problem.projection.transpose() * G * problem.projection) /
+          monodromy_w0;
+      A.bottomRightCorner(N, N) = -Minv * problem.damping;
+      E = (A * h).exp();
+    }
     next.noalias() = E * phi;
     phi.swap(next);
   }

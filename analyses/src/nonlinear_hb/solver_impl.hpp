@@ -59,6 +59,19 @@ struct NhbSolver::Impl {
 
   // Exact integration of a projected law (projected_integration.cpp).
   bool projected = false;  ///< exact via the law's NhbProjectedForm.
+  /// Eigen-decomposition of the balanced state matrix A' = [0 ω₀I; −M⁻¹(K + Pᵀ G P)/ω₀ −M⁻¹C]
+  /// of one value of ∂g/∂u = G (the projected monodromy's pieces take few distinct values):
+  /// exp(A'h) = Re(V e^{Λh} V⁻¹) per piece with two real products instead of a Padé exponential.
+  struct PieceExponential {
+    MatrixX G;                             ///< n×n key.
+    bool ok = false;                       ///< V well conditioned (else Padé for this G).
+    MatrixX v_re, v_im, vinv_re, vinv_im;  ///< Re/Im of V and V⁻¹ (2N×2N).
+    VectorXc lambda;                       ///< Eigenvalues (2N).
+  };
+  std::vector<PieceExponential> piece_exponentials;  ///< At most kMaxPieceExponentials.
+  double monodromy_w0 = 0.0;                         ///< ω₀ of the balancing (0: not set).
+  /// The entry of G, made when new (nullptr: the cache is full).
+  const PieceExponential* FindPieceExponential(const MatrixX& G);
   /// x of the last IntegrateProjected (g_h, dg_h, switch_angles are its results); valid only
   /// while integrated_valid. The monodromy and the description of an accepted point reuse the
   /// corrector's last integration instead of repeating it.
