@@ -66,6 +66,14 @@ void NhbSolver::Impl::FindPolynomialSuperlevelSet(double level) {
   crossings.clear();
   double amplitude = 0.0;  // ≥ ‖u − U₀‖∞
   for (int k = 1; k <= H; ++k) amplitude += 2.0 * std::sqrt(std::norm(poly[k]));  // no hypot
+  intervals.clear();
+  // |v − V_0| ≤ amplitude everywhere: a level beyond V_0 ± amplitude is never crossed (e.g. a
+  // back flank the orbit does not reach), and the scan below is skipped.
+  if (poly[0].real() + amplitude < level) return;
+  if (poly[0].real() - amplitude > level) {
+    intervals.emplace_back(0.0, kTwoPi);
+    return;
+  }
   const double hH = h * H;
   const double hermite_error_bound = 2.0 * hH * hH * hH * hH / 384.0 * amplitude;  // 2× margin
   for (int s = 0; s < S; ++s) {

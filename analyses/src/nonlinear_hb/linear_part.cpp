@@ -118,7 +118,19 @@ void NhbSolver::Impl::UpdateLinear(double omega) {
       }
       Eigen::Map<VectorXc>(receptance.data(), n * n).noalias() = residues * pole_weights;
       Eigen::Map<VectorXc>(d_receptance.data(), n * n).noalias() = residues * pole_weights2;
-      Z[k] = receptance.partialPivLu().inverse();
+      if (n == 1) {
+        Z[k](0, 0) = 1.0 / receptance(0, 0);
+      } else if (n == 2) {
+        // Closed-form 2×2 inverse (no LU, no allocation; one mesh with its tilt coordinate).
+        const std::complex<double> det =
+            receptance(0, 0) * receptance(1, 1) - receptance(0, 1) * receptance(1, 0);
+        Z[k](0, 0) = receptance(1, 1) / det;
+        Z[k](1, 1) = receptance(0, 0) / det;
+        Z[k](0, 1) = -receptance(0, 1) / det;
+        Z[k](1, 0) = -receptance(1, 0) / det;
+      } else {
+        Z[k] = receptance.partialPivLu().inverse();
+      }
       // dZ = −Z dR Z.
       dZ[k].noalias() = -Z[k] * d_receptance * Z[k];
       const double norm_d = norm_k + kk * w * norm_c + kk * kk * w * w * norm_m;

@@ -25,17 +25,23 @@ constexpr size_t kMaxPieceExponentials = 512;
 /// relative, far below the stability margin (1e-5); below, Padé for that G.
 constexpr double kMinPieceEigenvectorRcond = 1e-6;
 
-/// Adds (k/2π) ∫_lo^hi e^{−ijθ} dθ, j = 0..J, to out[j].
-void AddIntervalIntegrals(double lo, double hi, double k, int J, VectorXc& out) {
-  out[0] += k * (hi - lo) / kTwoPi;
-  const C za = std::polar(1.0, -lo), zb = std::polar(1.0, -hi);
-  C pa = 1.0, pb = 1.0;
+/// Adds (k/2π) ∫_lo^hi e^{−ijθ} dθ, j = 0..J, to out[j]; inverse_j[j] = 1/j (j ≥ 1). In real
+/// arithmetic: the complex products' NaN/inf branches cost as much as the products.
+void AddIntervalIntegrals(double lo, double hi, double k, int J, const VectorX& inverse_j,
+                          VectorXc& out) {
+  const double scale = k / kTwoPi;
+  out[0] += scale * (hi - lo);
+  const double ca = std::cos(lo), sa = -std::sin(lo), cb = std::cos(hi), sb = -std::sin(hi);
+  double ar = 1.0, ai = 0.0, br = 1.0, bi = 0.0;  // e^{−ij lo}, e^{−ij hi}
   for (int j = 1; j <= J; ++j) {
-    pa *= za;
-    pb *= zb;
-    // (1/2π) ∫_lo^hi e^{−ijθ} dθ = (e^{−ij lo} − e^{−ij hi}) / (2π i j)
-    const C d = (pa - pb) * (k / (kTwoPi * j));
-    out[j] += C(d.imag(), -d.real());  // d / i
+    const double ar1 = ar * ca - ai * sa, br1 = br * cb - bi * sb;
+    ai = ar * sa + ai * ca;
+    bi = br * sb + bi * cb;
+    ar = ar1;
+    br = br1;
+    // (1/2π) ∫_lo^hi e^{−ijθ} dθ = (e^{−ij lo} − e^{−ij hi}) / (2π i j); d/i = (Im d, −Re d).
+    const double f = scale * inverse_j[j];
+    out[j] += C((ai - bi) * f, -(ar - br) * f);
   }
 }
 
@@ -50,6 +56,11 @@ void NhbSolver::Impl::IntegrateProjected(const VectorX& x) {
   for (MatrixXc& block : dg_h) block.setZero();
   switch_angles.clear();
   const int top = 2 * H;  // highest Jacobian harmonic
+  if (inverse_j.size() != top + 1) {
+    inverse_j.resize(top + 1);
+    inverse_j[0] = 0.0;
+    for (int j = 1; j <= top; ++j) inverse_j[j] = 1.0 / j;
+  }
   MatrixXc& offsets = projected_offsets;
   offsets.setZero(n, H + 1);
   for (const NhbProjectedTerm& term : pform.terms) {
@@ -90,7 +101,7 @@ void NhbSolver::Impl::IntegrateProjected(const VectorX& x) {
           if (k == 0.0) continue;
           for (double shift : {-kTwoPi, 0.0, kTwoPi}) {
             const double from = std::max(ta, lo + shift), to = std::min(tb, hi + shift);
-            if (to > from) AddIntervalIntegrals(from, to, k, top, weighted_integrals);
+            if (to > from) AddIntervalIntegrals(from, to, k, top, inverse_j, weighted_integrals);
           }
         }
       }
@@ -112,20 +123,47 @@ void NhbSolver::Impl::IntegrateProjected(const VectorX& x) {
     }
   }
   dg_h[0] += pform.linear.cast<C>();
-  // N_k = Σ_{l=−H..H} G_{k−l} U_l − b_k (G_{−j} = conj G_j, U_{−l} = conj U_l).
+  // N_k = Σ_{l=−H..H} G_{k−l} U_l − b_k (G_{−j} = conj G_j, U_{−l} = conj U_l), in real
+  // arithmetic on the two-sided tables: G_j at (j + 2H)n² + a + nb, U_l at (l + H)n + b.
+  const int nn = n * n;
+  toeplitz_g_re.resize(static_cast<size_t>((2 * top + 1) * nn));
+  toeplitz_g_im.resize(toeplitz_g_re.size());
+  toeplitz_u_re.resize(static_cast<size_t>((2 * H + 1) * n));
+  toeplitz_u_im.resize(toeplitz_u_re.size());
+  for (int j = 0; j <= top; ++j) {
+    for (int e = 0; e < nn; ++e) {
+      const C value = dg_h[j](e % n, e / n);
+      toeplitz_g_re[static_cast<size_t>((top + j) * nn + e)] = value.real();
+      toeplitz_g_im[static_cast<size_t>((top + j) * nn + e)] = value.imag();
+      toeplitz_g_re[static_cast<size_t>((top - j) * nn + e)] = value.real();
+      toeplitz_g_im[static_cast<size_t>((top - j) * nn + e)] = -value.imag();
+    }
+  }
+  for (int l = 0; l <= H; ++l) {
+    for (int b = 0; b < n; ++b) {
+      const double re = x[Re(l, b)], im = l == 0 ? 0.0 : x[Im(l, b)];
+      toeplitz_u_re[static_cast<size_t>((H + l) * n + b)] = re;
+      toeplitz_u_im[static_cast<size_t>((H + l) * n + b)] = im;
+      toeplitz_u_re[static_cast<size_t>((H - l) * n + b)] = re;
+      toeplitz_u_im[static_cast<size_t>((H - l) * n + b)] = -im;
+    }
+  }
   for (int k = 0; k <= H; ++k) {
     for (int a = 0; a < n; ++a) {
-      C sum = -offsets(a, k);
+      double sr = -offsets(a, k).real(), si = -offsets(a, k).imag();
       for (int l = -H; l <= H; ++l) {
-        const int j = k - l;
-        const int al = l < 0 ? -l : l;
+        const size_t g0 = static_cast<size_t>((top + k - l) * nn + a);
+        const size_t u0 = static_cast<size_t>((H + l) * n);
         for (int b = 0; b < n; ++b) {
-          const C Ub = al == 0 ? C(x[b], 0.0) : C(x[Re(al, b)], x[Im(al, b)]);
-          const C Gj = j >= 0 ? dg_h[j](a, b) : std::conj(dg_h[-j](a, b));
-          sum += Gj * (l < 0 ? std::conj(Ub) : Ub);
+          const double gr = toeplitz_g_re[g0 + static_cast<size_t>(n * b)];
+          const double gi = toeplitz_g_im[g0 + static_cast<size_t>(n * b)];
+          const double ur = toeplitz_u_re[u0 + static_cast<size_t>(b)];
+          const double ui = toeplitz_u_im[u0 + static_cast<size_t>(b)];
+          sr += gr * ur - gi * ui;
+          si += gr * ui + gi * ur;
         }
       }
-      g_h(a, k) = sum;
+      g_h(a, k) = C(sr, si);
     }
   }
 }

@@ -77,10 +77,14 @@ struct NhbSolver::Impl {
   /// corrector's last integration instead of repeating it.
   VectorX integrated_x;
   bool integrated_valid = false;
-  NhbProjectedForm pform;             ///< The law's projected form when projected.
-  VectorXc poly;                      ///< (H+1) harmonics c_k of the scalar polynomial v(θ).
-  VectorX poly_values, poly_slopes;   ///< (S) v and dv/dθ at the samples.
-  VectorXc weighted_integrals;        ///< I_j, j = 0..2H (index j).
+  NhbProjectedForm pform;            ///< The law's projected form when projected.
+  VectorXc poly;                     ///< (H+1) harmonics c_k of the scalar polynomial v(θ).
+  VectorX poly_values, poly_slopes;  ///< (S) v and dv/dθ at the samples.
+  VectorXc weighted_integrals;       ///< I_j, j = 0..2H (index j).
+  VectorX inverse_j;                 ///< 1/j, j = 0..2H (entry 0 unused).
+  /// Two-sided G_j (j = −2H..2H) and U_l (l = −H..H), real and imaginary parts, for the
+  /// Toeplitz product N_k = Σ_l G_{k−l} U_l.
+  std::vector<double> toeplitz_g_re, toeplitz_g_im, toeplitz_u_re, toeplitz_u_im;
   VectorXc poly_full;                 ///< V_m − β δ_m, m = −H..H (index m + H).
   std::vector<double> switch_angles;  ///< Set ends of the last IntegrateProjected [rad].
   MatrixXc projected_offsets;         ///< n×(H+1): b_k of IntegrateProjected.
