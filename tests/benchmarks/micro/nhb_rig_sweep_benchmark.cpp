@@ -5,8 +5,10 @@
 // --set mesh.pinion-wheel.model=slices --set mesh.pinion-wheel.center_distance=0.1502 --set
 // mesh.pinion-wheel.damping_ratio=0.05` runs it (H = 24). Paired paths:
 //  * Exact — as the CLI runs it now: kAuto (the slice law's projected form integrated exactly,
-//    exact piecewise monodromy; nonlinear_hb.hpp "Exact integration of projected laws") and
-//    |ΔΩ| ≤ range/200 per step (max_omega_step);
+//    exact piecewise monodromy; nonlinear_hb.hpp "Exact integration of projected laws"; the
+//    pole–residue condensation built once) and |ΔΩ| ≤ range/200 per step (max_omega_step);
+//  * ExactDirectCondensation — the same with NhbCondensation::kDirect (an LU of every D_k at
+//    every new Ω, as before issue 13's second round): what the pole–residue form saves;
 //  * Before — as the CLI ran it before issue 13: forced kSampled (AFT, 16 samples per harmonic,
 //    Magnus-4 monodromy on max(64, 4H) uniform steps) and scaled arclength step ≤ 1/200;
 //  * SampledCapped — kSampled with the new step rule (what the step rule alone gives).
@@ -38,10 +40,12 @@ const SystemModel& Rig() {
   return model;
 }
 
-void Sweep(benchmark::State& state, NhbForceIntegration integration, bool omega_cap) {
+void Sweep(benchmark::State& state, NhbForceIntegration integration, bool omega_cap,
+           NhbCondensation condensation = NhbCondensation::kAuto) {
   SystemNhbOptions o;
   o.hb.harmonics = 24;
   o.hb.force_integration = integration;
+  o.hb.condensation = condensation;
   o.start_hz = 700.0;
   o.end_hz = 3500.0;
   if (omega_cap) {
@@ -56,6 +60,7 @@ void Sweep(benchmark::State& state, NhbForceIntegration integration, bool omega_
     benchmark::DoNotOptimize(c);
   }
   state.counters["points"] = static_cast<double>(c.points.size());
+  state.counters["folds"] = static_cast<double>(c.fold_frequencies_hz.size());
   state.counters["ok"] = c.summary.ok() ? 1.0 : 0.0;
   int unstable = 0;
   for (const SystemNhbPoint& p : c.points) unstable += p.point.stable == FloquetVerdict::kUnstable;
@@ -68,6 +73,9 @@ void Sweep(benchmark::State& state, NhbForceIntegration integration, bool omega_
 }
 
 void BM_RigSweepExact(benchmark::State& state) { Sweep(state, NhbForceIntegration::kAuto, true); }
+void BM_RigSweepExactDirectCondensation(benchmark::State& state) {
+  Sweep(state, NhbForceIntegration::kAuto, true, NhbCondensation::kDirect);
+}
 void BM_RigSweepBefore(benchmark::State& state) {
   Sweep(state, NhbForceIntegration::kSampled, false);
 }
@@ -75,7 +83,8 @@ void BM_RigSweepSampledCapped(benchmark::State& state) {
   Sweep(state, NhbForceIntegration::kSampled, true);
 }
 
-BENCHMARK(BM_RigSweepExact)->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK(BM_RigSweepExact)->Unit(benchmark::kMillisecond)->Iterations(5);
+BENCHMARK(BM_RigSweepExactDirectCondensation)->Unit(benchmark::kMillisecond)->Iterations(2);
 BENCHMARK(BM_RigSweepBefore)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_RigSweepSampledCapped)->Unit(benchmark::kMillisecond)->Iterations(1);
 
