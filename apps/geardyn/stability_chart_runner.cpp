@@ -125,7 +125,6 @@ class ChartContext {
     if (options.tolerance > s_.verdict_tolerance && growth > 0.0 &&
         growth <= 2.0 * r.summary.error_estimate) {
       options.tolerance = s_.verdict_tolerance;
-      options.magnus_measured_order = false;
       r = ComputeFloquet(*model, options);
       ++refined_;
     }

@@ -127,7 +127,8 @@ struct FloquetOptions {
   /// h‖A‖₁ ≤ 2π, the estimate uses the order measured from the last three runs (clamped to
   /// [1, magnus_order]) with a safety factor 2, and a result is accepted only when the coarser of
   /// the two runs compared is inside the Magnus series' radius (h‖A‖₁ ≤ π, Moan & Niesen 2008).
-  /// 2–3× fewer steps on the 12-DOF helical pair at 1e-6 (docs/benchmarks.md "README chart");
+  /// ≈ 2× fewer A(t) evaluations on the 12-DOF helical pair at 1e-6, because it delivers the
+  /// tolerance instead of ≈ 50× better (docs/design.md "Stability charts: the measured-order");
   /// the stability chart of the CLI uses it (its screening run; verdicts tested against the ODE
   /// path).
   bool magnus_measured_order = false;
