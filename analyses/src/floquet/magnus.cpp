@@ -223,8 +223,9 @@ MonodromyOutcome MagnusMonodromyMeasured(const StateSystem& sys, int order, doub
   //    coarser of the two runs compared has h‖A‖₁ ≤ π: inside the radius ∫‖A‖₂ < π of Moan &
   //    Niesen, Found. Comput. Math. 8 (2008) 291–301, where the series converges (the 1-norm
   //    as in MagnusStartSteps; ‖A‖₂ = 0.99‖A‖₁ on the helical pair's scaled state).
-  //  * The next count follows the fitted model e ∝ N^−p (×1.5 … ×16, with a 1.2 margin), ×2
-  //    while the order is unknown or the estimate is not finite.
+  //  * The next count follows the fitted model e ∝ N^−p (×1.5 … ×16, with a 1.2 margin) when the
+  //    measured order is within 1 of the nominal one; ×2 otherwise (order unknown or low,
+  //    estimate not finite, outside the radius).
   // On the 12-DOF helical pair at 1e-6 this takes ≈ 2× fewer A(t) evaluations than
   // MagnusMonodromy, with estimates 1.7–3.8× the true error of Φ: it delivers the tolerance where
   // MagnusMonodromy delivers ≈ 50× better (docs/design.md "Stability charts: the measured-order").
