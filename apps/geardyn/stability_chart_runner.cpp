@@ -116,6 +116,8 @@ class ChartContext {
     }
     FloquetOptions options = s_.floquet;
     options.mesh_frequency_hz = f_m;
+    options.magnus_measured_order = s_.measured_order;  // the screening run (see the @file)
+    options.list_undamped_modes = false;  // the chart reads max|λ| and the verdict only
     FloquetResult r = ComputeFloquet(*model, options);
     // A growth above the threshold but within twice the estimate could be the screening
     // tolerance's error: resolve it at the verdict tolerance (see the @file).

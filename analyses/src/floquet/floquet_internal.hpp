@@ -143,9 +143,9 @@ int RepeatingStepPeriod(const std::vector<double>& dt, const std::vector<const M
 inline constexpr int kMaxMagnusSteps = 1 << 16;
 inline constexpr int kMinMagnusSteps = 8;
 inline constexpr double kMagnusStepNorm = 1.0;
-/// @brief T·max_t ‖A(t)‖₁ [-] (64 samples of the callback, or every step matrix); adds the
-/// evaluations to *evaluations (may be null). NaN when A has NaN entries.
-double MaxOperatorNormTimesPeriod(const StateSystem& sys, long* evaluations);
+/// @brief T·max_t ‖A(t)‖₁ [-] (`samples` midpoints of the callback, or every step matrix); adds
+/// the evaluations to *evaluations (may be null). NaN when A has NaN entries.
+double MaxOperatorNormTimesPeriod(const StateSystem& sys, long* evaluations, int samples = 64);
 /// @brief The first Magnus step count: ⌈‖A‖T / kMagnusStepNorm⌉, at least kMinMagnusSteps;
 /// kMaxMagnusSteps + 1 when that is above the cap or ‖A‖T is not finite (see magnus.cpp).
 int MagnusStartSteps(double norm_times_period);
@@ -153,6 +153,12 @@ int MagnusStartSteps(double norm_times_period);
 /// MagnusStartSteps and refining past non-finite estimates; not converged (NaN Φ) when the start
 /// count exceeds the cap.
 MonodromyOutcome MagnusMonodromy(const StateSystem& sys, int order, double tolerance);
+/// @brief kMagnus with the measured-order step control (FloquetOptions::magnus_measured_order;
+/// magnus.cpp has the rules): counts from ⌈‖A‖T/2π⌉ (at least kMinMeasuredSteps), the estimate
+/// with the order of the last three runs, accepted only inside the series' radius.
+MonodromyOutcome MagnusMonodromyMeasured(const StateSystem& sys, int order, double tolerance);
+/// Smallest first count of MagnusMonodromyMeasured [-].
+inline constexpr int kMinMeasuredSteps = 2;
 /// @brief The observed convergence order [-] from the differences d₀ (runs N₀, N₁) and d₁ (N₁,
 /// N₂), clamped to [1, order]; 1 when d₀ is unknown (first comparison) or not usable.
 double ObservedOrder(double previous_difference, double difference, int n0, int n1, int order);

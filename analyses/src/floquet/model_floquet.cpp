@@ -341,7 +341,9 @@ FloquetResult ComputeFloquet(const SystemModel& model, const FloquetOptions& opt
     }
     result.marginal = result.verdict == FloquetVerdict::kStable && marginal;
   }
-  if (result.marginal) result.undamped_modes = internal::UndampedModes(model);
+  if (result.marginal && options.list_undamped_modes) {
+    result.undamped_modes = internal::UndampedModes(model);
+  }
   for (const std::string& w : warnings) result.summary.warnings.push_back(w);
   result.period_meshes = OperatorPeriodMeshes(model);
   result.period_s = static_cast<double>(result.period_meshes) / options.mesh_frequency_hz;

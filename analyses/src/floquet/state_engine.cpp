@@ -48,9 +48,13 @@ FloquetResult ComputeFloquetState(const StateSystem& sys, const FloquetOptions& 
         mono = ExactStepsMonodromy(sys);
         break;
       case FloquetMethod::kMagnus:
-        mono = options.magnus_steps > 0
-                   ? MagnusMonodromyFixed(sys, options.magnus_order, options.magnus_steps)
-                   : MagnusMonodromy(sys, options.magnus_order, options.tolerance);
+        if (options.magnus_steps > 0) {
+          mono = MagnusMonodromyFixed(sys, options.magnus_order, options.magnus_steps);
+        } else if (options.magnus_measured_order) {
+          mono = MagnusMonodromyMeasured(sys, options.magnus_order, options.tolerance);
+        } else {
+          mono = MagnusMonodromy(sys, options.magnus_order, options.tolerance);
+        }
         break;
       case FloquetMethod::kOdeStepper:
         mono = OdeMonodromy(sys, options.tolerance);

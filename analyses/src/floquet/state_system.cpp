@@ -250,10 +250,25 @@ StateSystem MakeStateSystem(const PeriodicSecondOrderSystem& system, bool deflat
     }
   }
   if (system.coefficients) {
-    auto buffers = std::make_shared<std::pair<MatrixX, MatrixX>>();
-    out.evaluate = [buffers, make_state, coefficients = system.coefficients](double t, MatrixX* A) {
-      coefficients(t, &buffers->first, &buffers->second);
-      make_state(buffers->first, buffers->second, A);
+    // make_state with the products into kept buffers (no allocation per call: Magnus evaluates
+    // A(t) three times per step).
+    struct Buffers {
+      MatrixX K, C, BtX;
+    };
+    auto buffers = std::make_shared<Buffers>();
+    out.evaluate = [buffers, f, ws, B = out.basis, coefficients = system.coefficients](double t,
+                                                                                       MatrixX* A) {
+      Buffers& b = *buffers;
+      coefficients(t, &b.K, &b.C);
+      A->setZero(2 * f, 2 * f);
+      A->block(0, f, f, f).diagonal().setConstant(ws);
+      b.BtX.noalias() = B.transpose() * b.K;
+      A->block(f, 0, f, f).noalias() = b.BtX * B;
+      A->block(f, 0, f, f) *= -1.0 / ws;
+      if (b.C.size() != 0) {
+        b.BtX.noalias() = B.transpose() * b.C;
+        A->block(f, f, f, f).noalias() = -(b.BtX * B);
+      }
     };
   } else if (!system.steps.empty()) {
     auto lookup = std::make_shared<StepLookup>();

@@ -5,9 +5,10 @@
 //     --set 'mesh.pinion-wheel.parameters={form="fourier", stiffness=[4e8, 0, 0]}'
 //     --x operating_point.speed_rpm=5000:40000:80
 //     --y mesh.pinion-wheel.parameters.stiffness.1=0:1.2e8:24
-// Arguments: x points, y points, threads (0 = all cores), settings (0: the former defaults,
-// Floquet tolerance 1e-10 and bisection to 1e-5 of the span; 1: the current defaults, 1e-6 with
-// the 1e-10 verdict refinement and bisection to 1e-3).
+// Arguments: x points, y points, threads (0 = all cores), settings (0: the defaults before issue
+// 13, Floquet tolerance 1e-10 and bisection to 1e-5 of the span; 2: the first issue-13 defaults,
+// 1e-6 with the 1e-10 verdict refinement and bisection to 1e-3; 1: the current defaults, as 2
+// with the measured-order Magnus step control for the 1e-6 screening run).
 #include <benchmark/benchmark.h>
 
 #include "geardyn/stability_chart_runner.hpp"
@@ -22,9 +23,10 @@ void BM_ReadmeChart(benchmark::State& state) {
   s.x = {app::kSpeedPath, 5000.0, 40000.0, static_cast<int>(state.range(0))};
   s.y = {"mesh.pinion-wheel.parameters.stiffness.1", 0.0, 1.2e8, static_cast<int>(state.range(1))};
   s.chart.num_threads = static_cast<int>(state.range(2));
-  const bool current = state.range(3) != 0;
-  s.floquet.tolerance = current ? 1e-6 : 1e-10;
-  s.chart.boundary_tolerance = current ? 1e-3 : 1e-5;
+  const long settings = state.range(3);
+  s.floquet.tolerance = settings != 0 ? 1e-6 : 1e-10;
+  s.chart.boundary_tolerance = settings != 0 ? 1e-3 : 1e-5;
+  s.measured_order = settings == 1;
   long evaluations = 0, regions = 0, unstable = 0;
   for (auto _ : state) {
     const app::SceneChart run = app::ComputeSceneStabilityChart(s);
@@ -44,6 +46,8 @@ void BM_ReadmeChart(benchmark::State& state) {
 BENCHMARK(BM_ReadmeChart)
     ->Args({80, 24, 0, 1})
     ->Args({80, 24, 1, 1})
+    ->Args({80, 24, 0, 2})
+    ->Args({80, 24, 1, 2})
     ->Args({80, 24, 0, 0})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
