@@ -22,8 +22,10 @@ HbClassSampler::HbClassSampler(const SystemModel& model, int q, const std::vecto
   for (int k = 0; k < num_meshes; ++k) {
     const SystemMesh& mesh = model.meshes()[k];
     const auto* core = std::get_if<LinearMeshCore>(&mesh.core);
-    GEARDYN_THROW_UNLESS(core != nullptr, "harmonic balance: sparse harmonics need linear cores; "
-                                          "mesh '" << mesh.name << "' is not one");
+    GEARDYN_THROW_UNLESS(core != nullptr,
+                         "harmonic balance: sparse harmonics need linear cores; "
+                         "mesh '"
+                             << mesh.name << "' is not one");
     for (int s = 0; s < S_; ++s) {
       const double phase = mesh.MeshPhase(period * s / S_);
       k2_[k].push_back(EvalStiffnessCore(*core, phase));
@@ -77,7 +79,8 @@ double HbClassSampler::Evaluate(const MatrixXc& Q, double omega, bool forces, bo
       }
       const int j = (k - c) / q;
       for (int s = 0; s < S; ++s) {
-        const double a = 2.0 * std::numbers::pi * static_cast<double>((static_cast<long>(j) * s) % S) / S;
+        const double a =
+            2.0 * std::numbers::pi * static_cast<double>((static_cast<long>(j) * s) % S) / S;
         const std::complex<double> z(std::cos(a), std::sin(a));
         env_q.col(s) += z * qk;
         env_v.col(s) += z * vk;

@@ -119,10 +119,10 @@ struct HbSetup {
   // Per mesh: K2, C2 at the operator harmonics jq (j = 0 … 2H+1), K2 ε and ε at ks[i].
   std::vector<std::vector<Matrix2c>> op_stiffness, op_damping;
   std::vector<std::vector<Vector2c>> load, eps;
-  SparseMatrix M, Kbar, Cbar;                 // mean system
-  SparseMatrix Kbar0;                         // K̄ + rigid-body penalty W (harmonic 0 only)
-  MatrixX M_d, Kbar_d, Kbar0_d, Cbar_d;       // dense copies (dense storage)
-  std::vector<VectorXc> F;                    // per position in ks (F_0 balanced)
+  SparseMatrix M, Kbar, Cbar;            // mean system
+  SparseMatrix Kbar0;                    // K̄ + rigid-body penalty W (harmonic 0 only)
+  MatrixX M_d, Kbar_d, Kbar0_d, Cbar_d;  // dense copies (dense storage)
+  std::vector<VectorXc> F;               // per position in ks (F_0 balanced)
   double unbalanced = 0.0;
   // Mesh-deflection channels (rows of G_all) whose stiffness or damping varies with θ.
   int r = 0;
@@ -343,10 +343,10 @@ HbSetup& HarmonicBalanceSolver::Impl::Setup(int H) {
     }
   } else {
     std::string why;
-    GEARDYN_THROW_UNLESS(EstimateSparseBytes(H, &why) <= kMaxHbBytes,
-                         "harmonic balance: sparse harmonics need "
-                             << (why.empty() ? "more than " + FormatG(kMaxHbBytes / 1e9) + " GB"
-                                             : why));
+    GEARDYN_THROW_UNLESS(
+        EstimateSparseBytes(H, &why) <= kMaxHbBytes,
+        "harmonic balance: sparse harmonics need "
+            << (why.empty() ? "more than " + FormatG(kMaxHbBytes / 1e9) + " GB" : why));
     // Candidate classes (the lines the loads can reach), then the same size test as the dense
     // path on their kept harmonics.
     const std::vector<int> candidates = CandidateClasses();
@@ -376,8 +376,8 @@ HbSetup& HarmonicBalanceSolver::Impl::Setup(int H) {
       s->op_stiffness[k] = sh[k].stiffness;
       s->op_damping[k] = sh[k].damping;
       for (int kk : s->ks) {
-        const auto i = static_cast<size_t>(std::lower_bound(all.begin(), all.end(), kk) -
-                                           all.begin());
+        const auto i =
+            static_cast<size_t>(std::lower_bound(all.begin(), all.end(), kk) - all.begin());
         s->load[k].push_back(sh[k].load[i]);
         s->eps[k].push_back(sh[k].transmission_error[i]);
       }
@@ -770,9 +770,10 @@ HbResult HarmonicBalanceSolver::Impl::SolveFixed(int H, double f_m) {
                                         &result);
   } else {
     MatrixXc full = MatrixXc::Zero(s.n, s.kmax + 1);  // column k: Q_k
-    for (size_t i = 0; i < s.ks.size(); ++i) full.col(s.ks[i]) = Q.col(static_cast<Eigen::Index>(i));
-    max_rms = s.sampler->Evaluate(full, omega, options.compute_forces, options.keep_harmonics,
-                                  &result);
+    for (size_t i = 0; i < s.ks.size(); ++i)
+      full.col(s.ks[i]) = Q.col(static_cast<Eigen::Index>(i));
+    max_rms =
+        s.sampler->Evaluate(full, omega, options.compute_forces, options.keep_harmonics, &result);
   }
   // Fixed-H estimate: RMS of the DTE harmonics above 3/4 of the kept mesh orders, relative to
   // the largest RMS DTE.
@@ -807,24 +808,22 @@ HarmonicBalanceSolver::HarmonicBalanceSolver(const SystemModel& model, const HbO
   const int first = options.harmonics > 0 ? options.harmonics : options.min_harmonics;
   std::string sparse_why;
   const double sparse_bytes = impl_->EstimateSparseBytes(first, &sparse_why);
-  GEARDYN_THROW_UNLESS(options.harmonic_storage != HbHarmonicStorage::kSparse ||
-                           sparse_bytes <= kMaxHbBytes,
-                       "HbOptions::harmonic_storage: sparse harmonics not possible for H = "
-                           << first << ": "
-                           << (sparse_why.empty() ? "would need about " +
-                                                        FormatG(sparse_bytes / 1e9) + " GB"
-                                                  : sparse_why));
+  GEARDYN_THROW_UNLESS(
+      options.harmonic_storage != HbHarmonicStorage::kSparse || sparse_bytes <= kMaxHbBytes,
+      "HbOptions::harmonic_storage: sparse harmonics not possible for H = "
+          << first << ": "
+          << (sparse_why.empty() ? "would need about " + FormatG(sparse_bytes / 1e9) + " GB"
+                                 : sparse_why));
   const double bytes = impl_->UseSparse(first) ? sparse_bytes : impl_->EstimateBytes(first);
   GEARDYN_THROW_UNLESS(
       bytes <= kMaxHbBytes,
       "HbOptions::harmonics: H = "
           << first << " over a period of " << model.period_meshes() << " mesh cycles (P/P_K = "
           << impl_->ClassModulus() << " sidebands per mesh order) would need about "
-          << FormatG(bytes / 1e9) << " GB (limit " << FormatG(kMaxHbBytes / 1e9)
-          << " GB)"
-          << (sparse_why.empty() ? std::string()
-                                 : "; sparse harmonics (a runout's sidebands) not possible: " +
-                                       sparse_why)
+          << FormatG(bytes / 1e9) << " GB (limit " << FormatG(kMaxHbBytes / 1e9) << " GB)"
+          << (sparse_why.empty()
+                  ? std::string()
+                  : "; sparse harmonics (a runout's sidebands) not possible: " + sparse_why)
           << "; lower H, or remove the tooth errors that make the hunting period");
 }
 

@@ -145,11 +145,11 @@ LinearMeshCore::LinearMeshCore(MeshCoreLevel level, Coefficient stiffness, doubl
     GEARDYN_THROW_UNLESS(m >= 1, "sidebands.harmonics[" << i << "]: must be >= 1, got " << m);
     // A line on a harmonic of K2's period would give K2 ε a mean and mesh orders: it belongs in
     // the coefficient (CalcMeanTransmissionErrorLoad and the HB classes rely on this).
-    GEARDYN_THROW_UNLESS(
-        (m * PeriodMeshes(stiffness_)) % sb.period_meshes != 0,
-        "sidebands.harmonics[" << i << "]: " << m << "/" << sb.period_meshes
-                               << " mesh orders is a harmonic of the stiffness period "
-                               << PeriodMeshes(stiffness_) << "; put it in transmission_error");
+    GEARDYN_THROW_UNLESS((m * PeriodMeshes(stiffness_)) % sb.period_meshes != 0,
+                         "sidebands.harmonics["
+                             << i << "]: " << m << "/" << sb.period_meshes
+                             << " mesh orders is a harmonic of the stiffness period "
+                             << PeriodMeshes(stiffness_) << "; put it in transmission_error");
   }
   GEARDYN_THROW_UNLESS(!mean_lti_ || Classify(stiffness_) == TimeDependence::kConstant,
                        "mean_lti: the LTI level needs constant stiffness channels, got "

@@ -180,7 +180,6 @@ MatrixXc ErrorPeriodValueHarmonics(const SystemMesh& mesh, const LinearMeshCore&
   return values;
 }
 
-
 // The 8 value channels' harmonics n = 0 … N (units of 1/P_k, column n) of a core without
 // sidebands, in its own phase.
 MatrixXc CoefficientValueHarmonics(const SystemMesh& mesh, std::int64_t core_period, int N) {
@@ -188,8 +187,7 @@ MatrixXc CoefficientValueHarmonics(const SystemMesh& mesh, std::int64_t core_per
   if (HasErrorPeriodLoad(mesh.core, core_period)) {
     return ErrorPeriodValueHarmonics(mesh, std::get<LinearMeshCore>(mesh.core), core_period, N);
   }
-  const FourierCoefficient series =
-      ToFourier(MeshValueCoefficient(mesh, core_period, N, true), N);
+  const FourierCoefficient series = ToFourier(MeshValueCoefficient(mesh, core_period, N, true), N);
   values.col(0) = series.mean().cast<std::complex<double>>();
   if (N > 0) values.rightCols(N) = series.harmonics();
   // K2, C2 from their own coefficients when those are stepwise but the load's are not (a
@@ -365,8 +363,7 @@ std::vector<SparseMeshHarmonics> ExpandMeshHarmonicsSparse(
       eps = ToFourier(*linear->transmission_error(), static_cast<int>(max_m / (qc * re)));
     }
     const auto phase = [&](std::int64_t n) {  // θ_k = θ + φ_k (see ExpandMeshHarmonics)
-      return std::polar(1.0,
-                        static_cast<double>(n) * mesh.phase_offset / static_cast<double>(pc));
+      return std::polar(1.0, static_cast<double>(n) * mesh.phase_offset / static_cast<double>(pc));
     };
     for (int j = 0; j <= J; ++j) {
       const std::int64_t m = static_cast<std::int64_t>(j) * q;

@@ -116,13 +116,14 @@ MeshTransmissionError MakeTransmissionError(const Scene& scene, const MeshDef& m
   const auto nonzero = [](const std::vector<double>& v) {
     return std::any_of(v.begin(), v.end(), [](double x) { return x != 0.0; });
   };
-  const bool sidebands_apply =
-      mesh.model.level != MeshModelLevel::kNonlinearSlices &&
-      (errors.pinion_runout > 0.0 || errors.gear_runout > 0.0) &&
-      !nonzero(errors.pinion_pitch_deviations) && !nonzero(errors.gear_pitch_deviations) &&
-      errors.pinion_teeth >= 2 && errors.gear_teeth >= 2;
-  if (sidebands_apply && (runout == RunoutForm::kSidebands ||
-                          (runout == RunoutForm::kAuto && samples > kMaxTransmissionErrorSamples))) {
+  const bool sidebands_apply = mesh.model.level != MeshModelLevel::kNonlinearSlices &&
+                               (errors.pinion_runout > 0.0 || errors.gear_runout > 0.0) &&
+                               !nonzero(errors.pinion_pitch_deviations) &&
+                               !nonzero(errors.gear_pitch_deviations) && errors.pinion_teeth >= 2 &&
+                               errors.gear_teeth >= 2;
+  if (sidebands_apply &&
+      (runout == RunoutForm::kSidebands ||
+       (runout == RunoutForm::kAuto && samples > kMaxTransmissionErrorSamples))) {
     MeshTransmissionError out;
     out.sidebands = MakeRunoutSidebands(te->separation());
     if (te->separation().has_flank_modifications()) {

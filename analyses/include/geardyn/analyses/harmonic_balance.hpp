@@ -41,8 +41,8 @@
 /// P = 988 027) make q = P/P_K so large that nothing indexed up to k_max ≈ Hq fits (the dense
 /// estimate is refused above 2 GB). When every core is linear and its ε is a short-period
 /// coefficient plus a few lines (TransmissionErrorSidebands: the runout), the solver keeps only
-/// the kept harmonics (HbOptions::harmonic_storage: kAuto → sparse above the dense limit, or forced): the
-/// operator at the harmonics jq and the load K2 ε at the kept k come from
+/// the kept harmonics (HbOptions::harmonic_storage: kAuto → sparse above the dense limit, or
+/// forced): the operator at the harmonics jq and the load K2 ε at the kept k come from
 /// ExpandMeshHarmonicsSparse (exact convolution of K2's harmonics with ε's lines), the classes
 /// are those the lines reach, each solved as before. Outputs (HbClassSampler): every output is
 /// Σ_c e^{icθ/P} E_c(θ) with an envelope E_c of one operator period, so the mean (class 0) and
@@ -161,16 +161,16 @@ struct HbOptions {
 /// @brief Steady-state outputs of one mesh.
 struct HbMeshOutput {
   std::string name;
-  double mean_dte = 0.0;          ///< θ-mean of the DTE [m]
-  double rms_dte = 0.0;           ///< RMS of DTE − mean [m]
+  double mean_dte = 0.0;  ///< θ-mean of the DTE [m]
+  double rms_dte = 0.0;   ///< RMS of DTE − mean [m]
   /// max − min of the DTE samples [m] (sparse harmonics: over a window of the hunting period,
   /// a lower bound; @file "Long hunting periods")
   double peak_to_peak_dte = 0.0;
   /// (k_max+1) |mean|, then 2|Y_k| of harmonic k of Ω = ω_m/P [m]; with sparse harmonics one
   /// per kept harmonic, in the order of HbResult::kept_harmonics.
   VectorX dte_amplitudes;
-  double mean_force = 0.0;  ///< θ-mean of F_η [N] (> 0: compression)
-  double rms_force = 0.0;   ///< RMS of F_η − mean [N]
+  double mean_force = 0.0;          ///< θ-mean of F_η [N] (> 0: compression)
+  double rms_force = 0.0;           ///< RMS of F_η − mean [N]
   double peak_to_peak_force = 0.0;  ///< [N]
 };
 
@@ -185,13 +185,13 @@ struct HbElementOutput {
 struct HbResult {
   Summary summary;  ///< status, message, error_estimate (see @file), counters, warnings, time
   HbMethod method_used = HbMethod::kAuto;
-  double mesh_frequency_hz = 0.0;         ///< f_m [Hz]
-  std::int64_t period_meshes = 1;         ///< P [-]
-  int harmonics = 0;                      ///< H used (mesh orders when P_K = 1)
-  int highest_harmonic = 0;               ///< k_max: the largest kept harmonic of Ω = ω_m/P
-  std::vector<int> kept_harmonics;        ///< the kept one-sided k (of Ω), ascending
-  bool sparse_harmonics = false;          ///< the sparse storage was used (@file)
-  double reciprocal_condition = 1.0;      ///< smallest estimated 1/cond of the LU solves
+  double mesh_frequency_hz = 0.0;     ///< f_m [Hz]
+  std::int64_t period_meshes = 1;     ///< P [-]
+  int harmonics = 0;                  ///< H used (mesh orders when P_K = 1)
+  int highest_harmonic = 0;           ///< k_max: the largest kept harmonic of Ω = ω_m/P
+  std::vector<int> kept_harmonics;    ///< the kept one-sided k (of Ω), ascending
+  bool sparse_harmonics = false;      ///< the sparse storage was used (@file)
+  double reciprocal_condition = 1.0;  ///< smallest estimated 1/cond of the LU solves
   int time_samples = 0;  ///< S used (sparse harmonics: per operator period of the envelopes)
   std::vector<HbMeshOutput> meshes;       ///< per mesh, model order
   std::vector<HbElementOutput> elements;  ///< per element (empty unless compute_forces)
