@@ -35,7 +35,7 @@
 /// ω_m/P, dropped the mesh frequency itself whenever H < P.) HbResult::kept_harmonics lists
 /// them, highest_harmonic is the largest. The working memory grows with (2H+1)·q; an H over a
 /// long hunting period that would need more than 2 GB is refused (the constructor) or ends the
-/// tolerance search (kToleranceNotMet).
+/// tolerance search (kToleranceNotMet), unless sparse harmonics apply ("Long hunting periods").
 ///
 /// **Long hunting periods** (sparse harmonics). Coprime tooth counts with a runout (997/991:
 /// P = 988 027) make q = P/P_K so large that nothing indexed up to k_max ≈ Hq fits (the dense
