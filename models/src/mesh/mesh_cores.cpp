@@ -100,8 +100,12 @@ MeshCoreSource MakeMeshCoreSource(const GearPairGeometry& geometry,
   const ZoneOfAction zone = MakeZoneOfAction(geometry, drive_sign);
   std::vector<std::string> warnings;
   StiffnessProfile profile = ResolveStiffnessProfile(stiffness, geometry, zone, &warnings);
-  MeshCoreSource source{ContactLineModel(zone, std::move(profile)), std::nullopt, MeshDamping{},
-                        geometry.backlash_normal, std::move(warnings), {}};
+  MeshCoreSource source{ContactLineModel(zone, std::move(profile)),
+                        std::nullopt,
+                        MeshDamping{},
+                        geometry.backlash_normal,
+                        std::move(warnings),
+                        {}};
   return source;
 }
 
