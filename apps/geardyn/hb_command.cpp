@@ -216,6 +216,9 @@ int RunHb(const HbCommandOptions& opts, std::ostream& out, std::ostream& err) {
       ParseMeshFrequencies(opts.settings.mesh_frequency, NominalMeshFrequency(scene));
   SceneSystemOptions system_options;
   system_options.analysis = "hb";  // named if a mass is missing
+  // The linear HB takes a runout over a hunting period too long to tabulate as sidebands (sparse
+  // harmonics); the nonlinear one samples ε over the period and keeps the table's refusal.
+  system_options.runout_form = opts.nonlinear ? RunoutForm::kTable : RunoutForm::kAuto;
   const SceneSystem built = BuildSceneSystem(scene, system_options);
   const bool has_slices = built.model.time_dependence() == TimeDependence::kNonlinear;
   if (opts.nonlinear) {

@@ -1,6 +1,8 @@
 #include "geardyn/hb_report.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <sstream>
@@ -166,6 +168,12 @@ json MakeHbReport(const std::string& scene_source, const HbSettings& settings,
     p["error_estimate"] = r.summary.error_estimate;
     p["status"] = StatusName(r.summary.status);
     if (!r.summary.ok()) p["message"] = r.summary.message;
+    if (r.sparse_harmonics) {
+      // dte_amplitudes_m are then at these harmonics of ω_m/P (harmonic_balance.hpp).
+      p["sparse_harmonics"] = true;
+      p["kept_harmonics"] = r.kept_harmonics;
+      p["time_samples_per_operator_period"] = r.time_samples;
+    }
     json meshes = json::array();
     for (const HbMeshOutput& m : r.meshes) {
       meshes.push_back({{"name", m.name},
@@ -221,7 +229,13 @@ std::string FormatHbCsv(const HbSweepResult& sweep, const HbStabilitySweep* stab
       os << "," << Num(m.rms_dte) << "," << Num(m.peak_to_peak_dte) << "," << Num(m.mean_dte);
       for (int h = 1; h <= kCsvHarmonics; ++h) {
         os << ",";
-        if (h < m.dte_amplitudes.size()) os << Num(m.dte_amplitudes(h));
+        if (r.sparse_harmonics) {  // amplitudes at the kept harmonics only: 0 elsewhere
+          const auto it = std::lower_bound(r.kept_harmonics.begin(), r.kept_harmonics.end(), h);
+          const bool kept = it != r.kept_harmonics.end() && *it == h;
+          os << Num(kept ? m.dte_amplitudes(it - r.kept_harmonics.begin()) : 0.0);
+        } else if (h < m.dte_amplitudes.size()) {
+          os << Num(m.dte_amplitudes(h));
+        }
       }
       os << "," << Num(m.rms_force);
     }
@@ -265,6 +279,17 @@ std::string FormatHbText(const json& report) {
   }
   if (!report["message"].get<std::string>().empty()) {
     os << "message: " << report["message"].get<std::string>() << "\n";
+  }
+  for (const auto& p : points) {
+    if (!p.value("sparse_harmonics", false)) continue;
+    const auto period = p["period_meshes"].get<std::int64_t>();
+    os << "note: hunting period of " << period
+       << " mesh cycles solved with sparse harmonics (the runout's sidebands of each kept mesh "
+          "order): means and RMS from the harmonics (DTE exact, forces from "
+       << p["time_samples_per_operator_period"].get<int>()
+       << " samples per mesh period); p-p sampled over at most " << kHbPeakWindowPeriods
+       << " mesh periods spread over the hunting period (a lower bound)\n";
+    break;
   }
   for (const auto& w : report["warnings"]) os << "warning: " << w.get<std::string>() << "\n";
   return os.str();

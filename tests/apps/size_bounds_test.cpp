@@ -101,17 +101,43 @@ TEST(SizeBoundsTest, MeshSamplesAWindowOfTheHuntingPeriod) {
 }
 
 TEST(SizeBoundsTest, TransmissionErrorTableOverAHuntingPeriodIsBounded) {
-  // The forced response needs ε over the hunting period: 256 samples × 988 027 cycles = 2.5·10⁸
-  // (4 GB) are refused at once, naming the period and the cost; so are 17 samples per cycle
-  // (1.68·10⁷ > 2^24 = 1.678·10⁷; 16 would pass the bound).
-  ExpectRejected(CoprimeRunout({"hb", kPair, "--mesh-frequency", "2500", "--harmonics", "1"}),
-                 {"mesh.pinion-wheel.errors", "hunting period of 988027 mesh cycles",
-                  "lcm of 997 and 991", "GB", "above the limit 16777216"});
-  ExpectRejected(CoprimeRunout({"hb", kPair, "--mesh-frequency", "2500", "--harmonics", "1",
-                                "--set", "mesh.pinion-wheel.table_samples=17"}),
-                 {"17 samples per cycle would hold 16796459 samples"});
+  // A forced response that needs ε as a table over the hunting period (the slice model, or pitch
+  // errors): 256 samples × 988 027 cycles = 2.5·10⁸ (4 GB) are refused at once, naming the period
+  // and the cost; so are 17 samples per cycle (1.68·10⁷ > 2^24 = 1.678·10⁷; 16 would pass).
+  const std::vector<std::string> slices = {"--set", "mesh.pinion-wheel.model=slices"};
+  std::vector<std::string> args =
+      CoprimeRunout({"hb", kPair, "--mesh-frequency", "2500", "--harmonics", "1"});
+  args.insert(args.end(), slices.begin(), slices.end());
+  ExpectRejected(args, {"mesh.pinion-wheel.errors", "hunting period of 988027 mesh cycles",
+                        "lcm of 997 and 991", "GB", "above the limit 16777216"});
+  args.insert(args.end(), {"--set", "mesh.pinion-wheel.table_samples=17"});
+  ExpectRejected(args, {"17 samples per cycle would hold 16796459 samples"});
   // The homogeneous analyses build no ε: the same scene runs.
   EXPECT_GT(RunJson(CoprimeRunout({"modes", kPair}))["modes"].size(), 0u);
+}
+
+TEST(SizeBoundsTest, LinearHbSolvesCoprimeTeethWithARunoutBySparseHarmonics) {
+  // The runout alone on a linear level: two lines over the hunting period (sidebands), solved
+  // class by class. Class 0 (the mesh orders) is the response without the runout (mean DTE
+  // equal), and the RMS adds the runout classes (Parseval).
+  const std::vector<std::string> base = {
+      "hb", kPair,   "--mesh-frequency",      "2500",  "--harmonics",
+      "8",  "--set", "gear.pinion.teeth=997", "--set", "gear.wheel.teeth=991"};
+  const nlohmann::json with = RunJson(
+      CoprimeRunout({"hb", kPair, "--mesh-frequency", "2500", "--harmonics", "8"}))["points"][0];
+  const nlohmann::json without = RunJson(base)["points"][0];
+  EXPECT_EQ(with["status"], "success");
+  EXPECT_TRUE(with["sparse_harmonics"].get<bool>());
+  EXPECT_EQ(with["period_meshes"].get<long>(), 988027);
+  EXPECT_EQ(with["kept_harmonics"].size(), 9u + 17u);  // j q (j ≤ 8) and j q ± 997
+  const nlohmann::json& a = with["meshes"][0];
+  const nlohmann::json& b = without["meshes"][0];
+  EXPECT_NEAR(a["mean_dte_m"].get<double>(), b["mean_dte_m"].get<double>(),
+              1e-9 * std::abs(b["mean_dte_m"].get<double>()));
+  EXPECT_GE(a["rms_dte_m"].get<double>(), b["rms_dte_m"].get<double>() * (1.0 - 1e-12));
+  const CliRun text = RunGeardyn(CoprimeRunout({"hb", kPair, "--mesh-frequency", "2500"}));
+  EXPECT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(text.out.find("sparse harmonics"), std::string::npos) << text.out;
 }
 
 // ------------------------------------------------------------------ stability-chart

@@ -14,6 +14,7 @@
 #include "geardyn/common/eigen_types.hpp"
 #include "geardyn/numerics/rigid_modes.hpp"
 #include "geardyn/system/probes.hpp"
+#include "geardyn/system/system_harmonics.hpp"
 #include "geardyn/system/system_model.hpp"
 
 namespace geardyn::internal {
@@ -106,6 +107,39 @@ class HbOutputSampler {
   // θ_s, so that a sweep evaluates no coefficient; empty for slice cores (EvalMeshProbe).
   std::vector<std::vector<Matrix2>> k2_, c2_;
   std::vector<std::vector<Vector2>> eps_;
+};
+
+// ------------------------------------------------------- class envelopes (hb_class_outputs.cpp)
+
+/// @brief The outputs of a sparse-harmonics solve (harmonic_balance.hpp "Long hunting periods")
+/// from the class envelopes instead of samples over the hunting period: every output y is
+/// Σ_c e^{icθ/P} E_c(θ) with E_c of the operator period 2πP_K, so the mean is that of E_0 and the
+/// mean square Σ_c w_c ⟨|E_c|²⟩ (w = 1 for c = 0 and c = q/2, else 2: the classes are orthogonal
+/// over the hunting period), each ⟨·⟩ from `samples` points of one operator period; the
+/// peak-to-peak values are sampled over min(q, kHbPeakWindowPeriods) operator periods spread
+/// evenly over the hunting period (a lower bound when q is larger).
+class HbClassSampler {
+ public:
+  /// @param[in] q P/P_K. @param[in] ks kept harmonics (ascending). @param[in] classes solved
+  /// classes. @param[in] eps per mesh, ε at ks[i] (system phase). @param[in] samples per operator
+  /// period (> 2(H+1)).
+  HbClassSampler(const SystemModel& model, int q, const std::vector<int>& ks,
+                 const std::vector<int>& classes, const std::vector<std::vector<Vector2c>>& eps,
+                 int samples);
+
+  /// @brief Fills result->meshes (dte_amplitudes at the kept harmonics), result->elements (when
+  /// forces), response_harmonics (kept order, when keep); time_samples = samples per operator
+  /// period. @param[in] Q (n × ks) Q at ks[i]. @param[in] omega Ω = ω_m/P [rad/s].
+  /// @return max over meshes of the RMS DTE [m].
+  double Evaluate(const MatrixXc& Q, double omega, bool forces, bool keep, HbResult* result) const;
+
+ private:
+  const SystemModel& model_;
+  int q_;
+  std::vector<int> ks_, classes_;
+  std::vector<std::vector<Vector2c>> eps_;
+  int S_;
+  std::vector<std::vector<Matrix2>> k2_, c2_;  // per mesh at the S samples of one period
 };
 
 // ---------------------------------------------------------------- warnings (hb_warnings.cpp)

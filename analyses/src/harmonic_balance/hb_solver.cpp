@@ -10,6 +10,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <numeric>
 #include <sstream>
 
 #include "geardyn/analyses/harmonic_balance.hpp"
@@ -110,14 +111,18 @@ struct HbSetup {
   int q = 1;     // P / P_K
   int kmax = 0;  // largest kept one-sided harmonic
   bool dense = true;
-  std::vector<int> ks;                        // kept one-sided harmonics, ascending, ks[0] = 0
-  std::vector<int> pos;                       // (kmax + 1) position of k in ks, −1 if not kept
-  std::vector<int> classes;                   // c ∈ [0, q/2] solved (0 always)
-  std::vector<MeshHarmonics> mesh_harmonics;  // m = 0 … (2H+1)q
-  SparseMatrix M, Kbar, Cbar;                 // mean system
-  SparseMatrix Kbar0;                         // K̄ + rigid-body penalty W (harmonic 0 only)
-  MatrixX M_d, Kbar_d, Kbar0_d, Cbar_d;       // dense copies (dense storage)
-  std::vector<VectorXc> F;                    // per position in ks (F_0 balanced)
+  // Sparse harmonics (harmonic_balance.hpp "Long hunting periods"): nothing is indexed by k up
+  // to k_max; the outputs come from the class envelopes (HbClassSampler).
+  bool sparse = false;
+  std::vector<int> ks;       // kept one-sided harmonics, ascending, ks[0] = 0
+  std::vector<int> classes;  // c ∈ [0, q/2] solved (0 always)
+  // Per mesh: K2, C2 at the operator harmonics jq (j = 0 … 2H+1), K2 ε and ε at ks[i].
+  std::vector<std::vector<Matrix2c>> op_stiffness, op_damping;
+  std::vector<std::vector<Vector2c>> load, eps;
+  SparseMatrix M, Kbar, Cbar;            // mean system
+  SparseMatrix Kbar0;                    // K̄ + rigid-body penalty W (harmonic 0 only)
+  MatrixX M_d, Kbar_d, Kbar0_d, Cbar_d;  // dense copies (dense storage)
+  std::vector<VectorXc> F;               // per position in ks (F_0 balanced)
   double unbalanced = 0.0;
   // Mesh-deflection channels (rows of G_all) whose stiffness or damping varies with θ.
   int r = 0;
@@ -130,7 +135,14 @@ struct HbSetup {
   Eigen::SparseLU<ComplexSparse> sparse_lu;
   bool pattern_analysed = false;
   std::unique_ptr<internal::HbOutputSampler> sampler;
+  std::unique_ptr<internal::HbClassSampler> class_sampler;
 
+  // Position of the kept harmonic k in ks (k must be kept).
+  int Pos(int k) const {
+    const auto it = std::lower_bound(ks.begin(), ks.end(), k);
+    GEARDYN_DEMAND(it != ks.end() && *it == k);
+    return static_cast<int>(it - ks.begin());
+  }
   // ΔK, ΔC at harmonic m (a multiple of q), X_{−m} = conj(X_m).
   MatrixXc DeltaAt(const std::vector<MatrixXc>& d, int m) const {
     const MatrixXc& x = d[static_cast<size_t>(std::abs(m) / q)];
@@ -158,6 +170,11 @@ struct HarmonicBalanceSolver::Impl {
 
   std::int64_t ClassModulus() const { return model.period_meshes() / OperatorPeriodMeshes(model); }
   double EstimateBytes(int H) const;
+  // The sparse path's memory [B] (harmonic_balance.hpp "Long hunting periods"), or +inf when
+  // the model cannot take it (why in *why).
+  double EstimateSparseBytes(int H, std::string* why) const;
+  bool UseSparse(int H) const;
+  std::vector<int> CandidateClasses() const;
   HbSetup& Setup(int H);
   void FindUndampedModes(const HbSetup& s);
   void CheckUndampedShare(const HbSetup& s, const MatrixXc& Q, double f_m, Summary* out) const;
@@ -187,6 +204,80 @@ double HarmonicBalanceSolver::Impl::EstimateBytes(int H) const {
   return bytes;
 }
 
+// Classes c ∈ [0, q/2] that some load line can reach: the residues mod q of the coefficient
+// parts' harmonics (multiples of P/P_b) shifted by ± each sideband line (m P/P_s).
+std::vector<int> HarmonicBalanceSolver::Impl::CandidateClasses() const {
+  const std::int64_t q = ClassModulus();
+  const std::int64_t P = model.period_meshes();
+  std::vector<char> seen(static_cast<size_t>(q / 2 + 1), 0);
+  seen[0] = 1;
+  for (const SystemMesh& mesh : model.meshes()) {
+    const auto* c = std::get_if<LinearMeshCore>(&mesh.core);
+    if (c == nullptr) continue;
+    const std::int64_t step = P / CoefficientPeriodMeshes(*c);  // coefficient harmonics' spacing
+    const std::int64_t residues = q / std::gcd(step % q == 0 ? q : step % q, q);
+    std::vector<std::int64_t> shifts = {0};
+    const TransmissionErrorSidebands& sb = c->sidebands();
+    for (int l = 0; l < sb.size(); ++l) {
+      const std::int64_t m = (sb.harmonics[static_cast<size_t>(l)] * (P / sb.period_meshes)) % q;
+      shifts.push_back(m);
+      shifts.push_back(q - m);
+    }
+    for (std::int64_t t = 0; t < residues; ++t) {
+      for (std::int64_t shift : shifts) {
+        const std::int64_t r = ((t * step) % q + shift) % q;
+        seen[static_cast<size_t>(std::min(r, q - r))] = 1;
+      }
+    }
+  }
+  std::vector<int> out;
+  for (size_t c = 0; c < seen.size(); ++c) {
+    if (seen[c]) out.push_back(static_cast<int>(c));
+  }
+  return out;
+}
+
+double HarmonicBalanceSolver::Impl::EstimateSparseBytes(int H, std::string* why) const {
+  const std::int64_t q = ClassModulus();
+  const std::int64_t P = model.period_meshes();
+  for (const SystemMesh& mesh : model.meshes()) {
+    const auto* c = std::get_if<LinearMeshCore>(&mesh.core);
+    if (c == nullptr) {
+      *why = "mesh '" + mesh.name + "' is not a linear core";
+      return std::numeric_limits<double>::infinity();
+    }
+    // The coefficient part is expanded at its own period: (H+1) q P_b/P harmonics.
+    const double nb = (H + 1.0) * static_cast<double>(q) *
+                      static_cast<double>(CoefficientPeriodMeshes(*c)) / static_cast<double>(P);
+    if (nb > 1e6) {
+      *why = "mesh '" + mesh.name + "': its ε coefficient repeats over " +
+             std::to_string(CoefficientPeriodMeshes(*c)) +
+             " mesh cycles (pitch errors?); only a runout has a sparse form (sidebands)";
+      return std::numeric_limits<double>::infinity();
+    }
+  }
+  if ((H + 2.0) * static_cast<double>(q) >= std::numeric_limits<int>::max()) {
+    *why = "the kept harmonics exceed the index range";
+    return std::numeric_limits<double>::infinity();
+  }
+  const double classes = static_cast<double>(CandidateClasses().size());
+  const double n = model.num_dofs();
+  const double r = 2.0 * model.num_meshes();
+  const double kept = classes * (2.0 * H + 2.0);
+  // Per kept harmonic the LTI solve [F, Gᵀ] (n(1+r)) and its response; the class coupling
+  // ((2H+2) r)²; the envelope samples (≤ 8(H+2) per operator period, n × classes × 2).
+  return 16.0 * kept * n * (2.0 + r) + 16.0 * std::pow((2.0 * H + 2.0) * r, 2) +
+         16.0 * classes * 2.0 * n * std::max(256.0, 16.0 * (H + 2.0));
+}
+
+// The sparse path when the dense one would exceed the memory limit and the model allows it.
+bool HarmonicBalanceSolver::Impl::UseSparse(int H) const {
+  if (options.harmonic_storage == HbHarmonicStorage::kSparse) return true;
+  if (options.harmonic_storage == HbHarmonicStorage::kDense) return false;
+  std::string why;
+  return EstimateBytes(H) > kMaxHbBytes && EstimateSparseBytes(H, &why) <= kMaxHbBytes;
+}
+
 HbSetup& HarmonicBalanceSolver::Impl::Setup(int H) {
   auto it = setups.find(H);
   if (it != setups.end()) return *it->second;
@@ -202,46 +293,104 @@ HbSetup& HarmonicBalanceSolver::Impl::Setup(int H) {
   s->q = static_cast<int>(q64);
   const int q = s->q;
   s->dense = model.storage_hint() == StorageKind::kDense;
-  s->mesh_harmonics = ExpandMeshHarmonics(model, (2 * H + 1) * q);
+  s->sparse = UseSparse(H);
   const auto& meshes = model.meshes();
-
-  // Classes of the forcing: c = k mod q folded to [0, q/2]; a class is solved when some load
-  // harmonic k ≤ Hq + q/2 in it exceeds kForcingTol of the largest (0 always: the mean).
+  const int num_meshes = static_cast<int>(meshes.size());
   const int reach = H * q + q / 2;
-  std::vector<double> class_size(q / 2 + 1, 0.0);
-  double largest = 0.0;
-  for (size_t k = 0; k < meshes.size(); ++k) {
-    for (int m = 0; m <= reach; ++m) {
-      const double a = s->mesh_harmonics[k].load[m].cwiseAbs().maxCoeff();
-      const int c = m % q;
-      class_size[std::min(c, q - c)] = std::max(class_size[std::min(c, q - c)], a);
-      largest = std::max(largest, a);
+  // Kept one-sided harmonics of the classes: jq ± c, j = 0 … H (the mesh orders and their
+  // sidebands).
+  const auto kept_of = [H, q](const std::vector<int>& classes) {
+    std::vector<int> ks;
+    for (int c : classes) {
+      for (int j = 0; j <= H; ++j) {
+        ks.push_back(j * q + c);
+        if (c > 0 && j >= 1) ks.push_back(j * q - c);
+      }
+    }
+    std::sort(ks.begin(), ks.end());
+    ks.erase(std::unique(ks.begin(), ks.end()), ks.end());
+    return ks;
+  };
+  s->op_stiffness.assign(num_meshes, {});
+  s->op_damping.assign(num_meshes, {});
+  s->load.assign(num_meshes, {});
+  s->eps.assign(num_meshes, {});
+  if (!s->sparse) {
+    const std::vector<MeshHarmonics> mh = ExpandMeshHarmonics(model, (2 * H + 1) * q);
+    // Classes of the forcing: c = k mod q folded to [0, q/2]; a class is solved when some load
+    // harmonic k ≤ Hq + q/2 in it exceeds kForcingTol of the largest (0 always: the mean).
+    std::vector<double> class_size(q / 2 + 1, 0.0);
+    double largest = 0.0;
+    for (int k = 0; k < num_meshes; ++k) {
+      for (int m = 0; m <= reach; ++m) {
+        const double a = mh[k].load[m].cwiseAbs().maxCoeff();
+        const int c = m % q;
+        class_size[std::min(c, q - c)] = std::max(class_size[std::min(c, q - c)], a);
+        largest = std::max(largest, a);
+      }
+    }
+    s->classes.push_back(0);
+    for (int c = 1; c <= q / 2; ++c) {
+      if (class_size[c] > kForcingTol * largest) s->classes.push_back(c);
+    }
+    s->ks = kept_of(s->classes);
+    for (int k = 0; k < num_meshes; ++k) {
+      for (int j = 0; j <= 2 * H + 1; ++j) {
+        s->op_stiffness[k].push_back(mh[k].stiffness[static_cast<size_t>(j) * q]);
+        s->op_damping[k].push_back(mh[k].damping[static_cast<size_t>(j) * q]);
+      }
+      for (int kk : s->ks) s->load[k].push_back(mh[k].load[kk]);
+    }
+  } else {
+    std::string why;
+    GEARDYN_THROW_UNLESS(
+        EstimateSparseBytes(H, &why) <= kMaxHbBytes,
+        "harmonic balance: sparse harmonics need "
+            << (why.empty() ? "more than " + FormatG(kMaxHbBytes / 1e9) + " GB" : why));
+    // Candidate classes (the lines the loads can reach), then the same size test as the dense
+    // path on their kept harmonics.
+    const std::vector<int> candidates = CandidateClasses();
+    const std::vector<int> all = kept_of(candidates);
+    const std::vector<std::int64_t> all64(all.begin(), all.end());
+    const std::vector<SparseMeshHarmonics> sh =
+        ExpandMeshHarmonicsSparse(model, OperatorPeriodMeshes(model), 2 * H + 1, all64);
+    std::vector<double> class_size(candidates.size(), 0.0);
+    double largest = 0.0;
+    for (int k = 0; k < num_meshes; ++k) {
+      for (size_t i = 0; i < all.size(); ++i) {
+        const double a = sh[k].load[i].cwiseAbs().maxCoeff();
+        const int c = all[i] % q;
+        const auto ci = static_cast<size_t>(
+            std::lower_bound(candidates.begin(), candidates.end(), std::min(c, q - c)) -
+            candidates.begin());
+        class_size[ci] = std::max(class_size[ci], a);
+        largest = std::max(largest, a);
+      }
+    }
+    s->classes.push_back(0);
+    for (size_t ci = 1; ci < candidates.size(); ++ci) {
+      if (class_size[ci] > kForcingTol * largest) s->classes.push_back(candidates[ci]);
+    }
+    s->ks = kept_of(s->classes);
+    for (int k = 0; k < num_meshes; ++k) {
+      s->op_stiffness[k] = sh[k].stiffness;
+      s->op_damping[k] = sh[k].damping;
+      for (int kk : s->ks) {
+        const auto i =
+            static_cast<size_t>(std::lower_bound(all.begin(), all.end(), kk) - all.begin());
+        s->load[k].push_back(sh[k].load[i]);
+        s->eps[k].push_back(sh[k].transmission_error[i]);
+      }
     }
   }
-  s->classes.push_back(0);
-  for (int c = 1; c <= q / 2; ++c) {
-    if (class_size[c] > kForcingTol * largest) s->classes.push_back(c);
-  }
-  // Kept one-sided harmonics: jq ± c, j = 0 … H (the mesh orders and their sidebands).
-  std::vector<int> ks;
-  for (int c : s->classes) {
-    for (int j = 0; j <= H; ++j) {
-      ks.push_back(j * q + c);
-      if (c > 0 && j >= 1) ks.push_back(j * q - c);
-    }
-  }
-  std::sort(ks.begin(), ks.end());
-  ks.erase(std::unique(ks.begin(), ks.end()), ks.end());
-  s->ks = ks;
-  s->kmax = ks.back();
-  s->pos.assign(s->kmax + 1, -1);
-  for (size_t i = 0; i < ks.size(); ++i) s->pos[ks[i]] = static_cast<int>(i);
+  s->kmax = s->ks.back();
+  const std::vector<int>& ks = s->ks;
 
   // Mean K̄, C̄ from the m = 0 harmonics (real) plus the constant parts.
   std::vector<Eigen::Triplet<double>> tk, tc;
   for (size_t k = 0; k < meshes.size(); ++k) {
-    ScatterMesh(meshes[k], s->mesh_harmonics[k].stiffness[0].real(), &tk);
-    ScatterMesh(meshes[k], s->mesh_harmonics[k].damping[0].real(), &tc);
+    ScatterMesh(meshes[k], s->op_stiffness[k][0].real(), &tk);
+    ScatterMesh(meshes[k], s->op_damping[k][0].real(), &tc);
   }
   SparseMatrix mk(n, n), mc(n, n);
   mk.setFromTriplets(tk.begin(), tk.end());
@@ -281,7 +430,7 @@ HbSetup& HarmonicBalanceSolver::Impl::Setup(int H) {
     const SystemMesh& mesh = meshes[k];
     const Eigen::Matrix<Complex, 12, 2> Gt = mesh.G.transpose().cast<Complex>();
     for (size_t i = 0; i < ks.size(); ++i) {
-      const Eigen::Matrix<Complex, 12, 1> f = Gt * s->mesh_harmonics[k].load[ks[i]];
+      const Eigen::Matrix<Complex, 12, 1> f = Gt * s->load[k][i];
       for (int a = 0; a < 12; ++a) {
         if (mesh.dofs[a] >= 0) s->F[i](mesh.dofs[a]) += f(a);
       }
@@ -292,14 +441,16 @@ HbSetup& HarmonicBalanceSolver::Impl::Setup(int H) {
   // Channels whose K2 or C2 varies with θ (the rank of the LTV part); only harmonics jq exist.
   std::vector<std::pair<int, int>> channels;  // (mesh, row of G)
   for (size_t k = 0; k < meshes.size(); ++k) {
-    const MeshHarmonics& mh = s->mesh_harmonics[k];
-    double scale_k = mh.stiffness[0].cwiseAbs().maxCoeff();
-    double scale_c = mh.damping[0].cwiseAbs().maxCoeff();
+    const std::vector<Matrix2c>& ks2 = s->op_stiffness[k];
+    const std::vector<Matrix2c>& cs2 = s->op_damping[k];
+    double scale_k = ks2[0].cwiseAbs().maxCoeff();
+    double scale_c = cs2[0].cwiseAbs().maxCoeff();
     for (int c = 0; c < 2; ++c) {
       bool varies = false;
-      for (int m = 1; m <= (2 * H + 1) * q && !varies; ++m) {
-        varies = mh.stiffness[m].row(c).cwiseAbs().maxCoeff() > kVaryingTol * scale_k ||
-                 mh.damping[m].row(c).cwiseAbs().maxCoeff() > kVaryingTol * scale_c;
+      // Only the harmonics jq of the operator exist (K, C repeat every P_K meshes).
+      for (int j = 1; j <= 2 * H + 1 && !varies; ++j) {
+        varies = ks2[j].row(c).cwiseAbs().maxCoeff() > kVaryingTol * scale_k ||
+                 cs2[j].row(c).cwiseAbs().maxCoeff() > kVaryingTol * scale_c;
       }
       if (varies) channels.emplace_back(static_cast<int>(k), c);
     }
@@ -323,9 +474,9 @@ HbSetup& HarmonicBalanceSolver::Impl::Setup(int H) {
     for (int a = 0; a < s->r; ++a) {
       for (int b = 0; b < s->r; ++b) {
         if (channels[a].first != channels[b].first) continue;  // meshes do not couple
-        const MeshHarmonics& mh = s->mesh_harmonics[channels[a].first];
-        s->dK[j](a, b) = mh.stiffness[j * q](channels[a].second, channels[b].second);
-        s->dC[j](a, b) = mh.damping[j * q](channels[a].second, channels[b].second);
+        const int mesh = channels[a].first;
+        s->dK[j](a, b) = s->op_stiffness[mesh][j](channels[a].second, channels[b].second);
+        s->dC[j](a, b) = s->op_damping[mesh][j](channels[a].second, channels[b].second);
       }
     }
   }
@@ -333,8 +484,18 @@ HbSetup& HarmonicBalanceSolver::Impl::Setup(int H) {
                        "HbOptions::time_samples: must exceed 2 k_max = "
                            << 2 * s->kmax << " (the highest kept harmonic of the period, H = " << H
                            << " mesh orders with their sidebands), got " << options.time_samples);
-  s->sampler = std::make_unique<internal::HbOutputSampler>(
-      model, s->kmax, internal::ChooseTimeSamples(s->kmax, options.time_samples, s->q));
+  if (s->sparse) {
+    // One operator period of the class envelopes: time_samples/q when given, else what the
+    // dense sampler takes for q = 1 (ChooseTimeSamples: a power of two ≥ max(256, 8(H+1))).
+    const int per_period = options.time_samples > 0
+                               ? std::max((options.time_samples + q - 1) / q, 2 * H + 4)
+                               : internal::ChooseTimeSamples(H, 0, 1);
+    s->class_sampler = std::make_unique<internal::HbClassSampler>(model, s->q, s->ks, s->classes,
+                                                                  s->eps, per_period);
+  } else {
+    s->sampler = std::make_unique<internal::HbOutputSampler>(
+        model, s->kmax, internal::ChooseTimeSamples(s->kmax, options.time_samples, s->q));
+  }
   if (!undamped.checked) FindUndampedModes(*s);
   HbSetup& ref = *s;
   setups.emplace(H, std::move(s));
@@ -438,21 +599,21 @@ MatrixXc HarmonicBalanceSolver::Impl::SolveDecoupledOrCondensed(HbSetup& s, doub
       s.sparse_lu.factorize(A);
       if (s.sparse_lu.info() != Eigen::Success) {
         *rcond = 0.0;
-        return MatrixXc::Constant(n, s.kmax + 1, Complex(NAN, NAN));
+        return MatrixXc::Constant(n, num, Complex(NAN, NAN));
       }
       *rcond = std::min(*rcond, EstimateSparseRcond(A, s.sparse_lu));
       Y[i] = s.sparse_lu.solve(rhs);
     }
     ++*factorizations;
   }
-  MatrixXc Q = MatrixXc::Zero(n, s.kmax + 1);
+  MatrixXc Q = MatrixXc::Zero(n, num);  // column i: Q_{ks[i]}
   if (r == 0) {
-    for (int i = 0; i < num; ++i) Q.col(s.ks[i]) = Y[i].col(0);
+    for (int i = 0; i < num; ++i) Q.col(i) = Y[i].col(0);
     return Q;
   }
   // Y_k for k < 0 by conjugation (A_{−k} = conj A_k, F_{−k} = conj F_k, G real).
   const auto y_at = [&](int k) -> MatrixXc {
-    const MatrixXc& y = Y[static_cast<size_t>(s.pos[std::abs(k)])];
+    const MatrixXc& y = Y[static_cast<size_t>(s.Pos(std::abs(k)))];
     return k >= 0 ? y : MatrixXc(y.conjugate());
   };
   // Toeplitz block T_{k,j} = ΔK_{k−j} + i jΩ ΔC_{k−j}.
@@ -488,7 +649,7 @@ MatrixXc HarmonicBalanceSolver::Impl::SolveDecoupledOrCondensed(HbSetup& s, doub
           td += T(k * q, j * q) * dj;
         }
         const MatrixXc y = y_at(k * q);
-        Q.col(k * q) = y.col(0) - y.rightCols(r) * td;
+        Q.col(s.Pos(k * q)) = y.col(0) - y.rightCols(r) * td;
       }
       continue;
     }
@@ -519,9 +680,9 @@ MatrixXc HarmonicBalanceSolver::Impl::SolveDecoupledOrCondensed(HbSetup& s, doub
       for (int b = 0; b < w; ++b) td += T(window[a], window[b]) * D.segment(b * r, r);
       const VectorXc qk = ys[a].col(0) - ys[a].rightCols(r) * td;
       if (window[a] >= 0) {
-        Q.col(window[a]) = qk;
+        Q.col(s.Pos(window[a])) = qk;
       } else {
-        Q.col(-window[a]) = qk.conjugate();  // Q_{−k} = conj Q_k (class q − c)
+        Q.col(s.Pos(-window[a])) = qk.conjugate();  // Q_{−k} = conj Q_k (class q − c)
       }
     }
   }
@@ -534,7 +695,10 @@ MatrixXc HarmonicBalanceSolver::Impl::SolveDirect(HbSetup& s, double omega, doub
       model, s.kmax, omega * static_cast<double>(model.period_meshes()) / (2.0 * std::numbers::pi));
   Eigen::PartialPivLU<MatrixX> lu(sys.matrix);
   *rcond = lu.rcond();
-  return internal::FromRealLayout(lu.solve(sys.rhs), s.n, s.kmax);
+  const MatrixXc all = internal::FromRealLayout(lu.solve(sys.rhs), s.n, s.kmax);
+  MatrixXc Q(s.n, static_cast<Eigen::Index>(s.ks.size()));
+  for (size_t i = 0; i < s.ks.size(); ++i) Q.col(static_cast<Eigen::Index>(i)) = all.col(s.ks[i]);
+  return Q;
 }
 
 HbResult HarmonicBalanceSolver::Impl::SolveFixed(int H, double f_m) {
@@ -556,6 +720,9 @@ HbResult HarmonicBalanceSolver::Impl::SolveFixed(int H, double f_m) {
   long factorizations = 0;
   MatrixXc Q;
   if (method == HbMethod::kDirect) {
+    GEARDYN_THROW_UNLESS(!s.sparse,
+                         "HbOptions::method: 'direct' solves every harmonic up to k_max = "
+                             << s.kmax << "; not with sparse harmonics (use condensed)");
     Q = SolveDirect(s, omega, &rcond);
     factorizations = 1;
     result.summary.counters["unknowns"] = static_cast<long>(s.n) * (2 * s.kmax + 1);
@@ -569,6 +736,7 @@ HbResult HarmonicBalanceSolver::Impl::SolveFixed(int H, double f_m) {
   result.summary.counters["harmonics"] = H;
   result.summary.counters["kept_harmonics"] = static_cast<long>(s.ks.size());
   result.summary.counters["forcing_classes"] = static_cast<long>(s.classes.size());
+  result.summary.counters["sparse_harmonics"] = s.sparse ? 1L : 0L;
   result.summary.counters["rigid_body_modes"] = rigid.count();  // rigid_modes.hpp criterion
   result.summary.warnings = warnings;
   if (!undamped.note.empty()) result.summary.warnings.push_back(undamped.note);
@@ -595,16 +763,33 @@ HbResult HarmonicBalanceSolver::Impl::SolveFixed(int H, double f_m) {
                                       FormatG(rcond) + "): expect to lose about " +
                                       FormatG(std::round(-std::log10(rcond))) + " digits");
   }
-  const double max_rms =
-      s.sampler->Evaluate(Q, omega, options.compute_forces, options.keep_harmonics, &result);
+  result.sparse_harmonics = s.sparse;
+  double max_rms = 0.0;
+  if (s.sparse) {
+    max_rms = s.class_sampler->Evaluate(Q, omega, options.compute_forces, options.keep_harmonics,
+                                        &result);
+  } else {
+    MatrixXc full = MatrixXc::Zero(s.n, s.kmax + 1);  // column k: Q_k
+    for (size_t i = 0; i < s.ks.size(); ++i)
+      full.col(s.ks[i]) = Q.col(static_cast<Eigen::Index>(i));
+    max_rms =
+        s.sampler->Evaluate(full, omega, options.compute_forces, options.keep_harmonics, &result);
+  }
   // Fixed-H estimate: RMS of the DTE harmonics above 3/4 of the kept mesh orders, relative to
   // the largest RMS DTE.
   double top = 0.0;
   const int first = (3 * H / 4) * s.q + 1;
   for (const HbMeshOutput& m : result.meshes) {
     double e2 = 0.0;
-    for (int h = first; h <= s.kmax && h < m.dte_amplitudes.size(); ++h) {
-      e2 += 0.5 * m.dte_amplitudes(h) * m.dte_amplitudes(h);
+    if (s.sparse) {  // amplitudes at the kept harmonics
+      for (size_t i = 0; i < s.ks.size(); ++i) {
+        const double a = m.dte_amplitudes(static_cast<Eigen::Index>(i));
+        if (s.ks[i] >= first) e2 += 0.5 * a * a;
+      }
+    } else {
+      for (int h = first; h <= s.kmax && h < m.dte_amplitudes.size(); ++h) {
+        e2 += 0.5 * m.dte_amplitudes(h) * m.dte_amplitudes(h);
+      }
     }
     top = std::max(top, std::sqrt(e2));
   }
@@ -621,14 +806,25 @@ HarmonicBalanceSolver::HarmonicBalanceSolver(const SystemModel& model, const HbO
   impl_->options = options;
   impl_->warnings = internal::CheckLinearHbModel(model);
   const int first = options.harmonics > 0 ? options.harmonics : options.min_harmonics;
-  const double bytes = impl_->EstimateBytes(first);
+  std::string sparse_why;
+  const double sparse_bytes = impl_->EstimateSparseBytes(first, &sparse_why);
+  GEARDYN_THROW_UNLESS(
+      options.harmonic_storage != HbHarmonicStorage::kSparse || sparse_bytes <= kMaxHbBytes,
+      "HbOptions::harmonic_storage: sparse harmonics not possible for H = "
+          << first << ": "
+          << (sparse_why.empty() ? "would need about " + FormatG(sparse_bytes / 1e9) + " GB"
+                                 : sparse_why));
+  const double bytes = impl_->UseSparse(first) ? sparse_bytes : impl_->EstimateBytes(first);
   GEARDYN_THROW_UNLESS(
       bytes <= kMaxHbBytes,
       "HbOptions::harmonics: H = "
           << first << " over a period of " << model.period_meshes() << " mesh cycles (P/P_K = "
           << impl_->ClassModulus() << " sidebands per mesh order) would need about "
-          << FormatG(bytes / 1e9) << " GB (limit " << FormatG(kMaxHbBytes / 1e9)
-          << " GB); lower H, or remove the tooth errors that make the hunting period");
+          << FormatG(bytes / 1e9) << " GB (limit " << FormatG(kMaxHbBytes / 1e9) << " GB)"
+          << (sparse_why.empty()
+                  ? std::string()
+                  : "; sparse harmonics (a runout's sidebands) not possible: " + sparse_why)
+          << "; lower H, or remove the tooth errors that make the hunting period");
 }
 
 HarmonicBalanceSolver::~HarmonicBalanceSolver() = default;
@@ -653,12 +849,15 @@ HbResult HarmonicBalanceSolver::Solve(double mesh_frequency_hz) {
                                  " not met with max_harmonics = " + std::to_string(H);
         break;
       }
-      if (impl_->EstimateBytes(next) > kMaxHbBytes) {
+      std::string why_next;
+      const double next_bytes = impl_->UseSparse(next) ? impl_->EstimateSparseBytes(next, &why_next)
+                                                       : impl_->EstimateBytes(next);
+      if (next_bytes > kMaxHbBytes) {
         result.summary.status = Status::kToleranceNotMet;
         result.summary.message = "harmonic balance: tolerance " + FormatG(o.tolerance) +
                                  " not met with H = " + std::to_string(H) +
                                  "; H = " + std::to_string(next) + " would need about " +
-                                 FormatG(impl_->EstimateBytes(next) / 1e9) + " GB";
+                                 FormatG(next_bytes / 1e9) + " GB";
         break;
       }
       result = impl_->SolveFixed(next, mesh_frequency_hz);

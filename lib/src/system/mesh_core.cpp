@@ -5,6 +5,8 @@
 
 #include <atomic>
 #include <cmath>
+#include <complex>
+#include <numbers>
 #include <numeric>
 #include <sstream>
 #include <utility>
@@ -109,11 +111,12 @@ double ResolveDampingCoefficient(const MeshDamping& damping, double mean_stiffne
 
 LinearMeshCore::LinearMeshCore(MeshCoreLevel level, Coefficient stiffness, double half_face_width,
                                std::optional<Coefficient> transmission_error, MeshDamping damping,
-                               bool mean_lti)
+                               bool mean_lti, TransmissionErrorSidebands sidebands)
     : level_(level),
       stiffness_(std::move(stiffness)),
       half_face_width_(half_face_width),
       transmission_error_(std::move(transmission_error)),
+      sidebands_(std::move(sidebands)),
       damping_(damping),
       mean_lti_(mean_lti) {
   GEARDYN_THROW_UNLESS(
@@ -127,6 +130,27 @@ LinearMeshCore::LinearMeshCore(MeshCoreLevel level, Coefficient stiffness, doubl
   }
   CheckHalfFaceWidth(half_face_width_);
   CheckDamping(damping_);
+  const TransmissionErrorSidebands& sb = sidebands_;
+  GEARDYN_THROW_UNLESS(sb.period_meshes >= 1,
+                       "sidebands.period_meshes: must be >= 1, got " << sb.period_meshes);
+  GEARDYN_THROW_UNLESS(sb.coefficients.rows() == (sb.empty() ? sb.coefficients.rows() : 2) &&
+                           sb.coefficients.cols() == sb.size(),
+                       "sidebands.coefficients: must be 2 x " << sb.size() << " (one column per "
+                                                              << "harmonic), got "
+                                                              << sb.coefficients.rows() << " x "
+                                                              << sb.coefficients.cols());
+  GEARDYN_THROW_UNLESS(sb.coefficients.allFinite(), "sidebands.coefficients: must be finite");
+  for (int i = 0; i < sb.size(); ++i) {
+    const std::int64_t m = sb.harmonics[static_cast<size_t>(i)];
+    GEARDYN_THROW_UNLESS(m >= 1, "sidebands.harmonics[" << i << "]: must be >= 1, got " << m);
+    // A line on a harmonic of K2's period would give K2 ε a mean and mesh orders: it belongs in
+    // the coefficient (CalcMeanTransmissionErrorLoad and the HB classes rely on this).
+    GEARDYN_THROW_UNLESS((m * PeriodMeshes(stiffness_)) % sb.period_meshes != 0,
+                         "sidebands.harmonics["
+                             << i << "]: " << m << "/" << sb.period_meshes
+                             << " mesh orders is a harmonic of the stiffness period "
+                             << PeriodMeshes(stiffness_) << "; put it in transmission_error");
+  }
   GEARDYN_THROW_UNLESS(!mean_lti_ || Classify(stiffness_) == TimeDependence::kConstant,
                        "mean_lti: the LTI level needs constant stiffness channels, got "
                            << TimeDependenceName(Classify(stiffness_))
@@ -148,7 +172,7 @@ LinearMeshCore::LinearMeshCore(MeshCoreLevel level, Coefficient stiffness, doubl
 LinearMeshCore MakeMeanLinearMeshCore(const LinearMeshCore& core) {
   return LinearMeshCore(core.level(), ConstantCoefficient(Mean(core.stiffness())),
                         core.half_face_width(), core.transmission_error(), core.damping(),
-                        /*mean_lti=*/true);
+                        /*mean_lti=*/true, core.sidebands());
 }
 
 Matrix2 EvalStiffnessCore(const LinearMeshCore& core, double theta) {
@@ -173,11 +197,48 @@ Matrix2 EvalDampingCore(const LinearMeshCore& core, double theta, double c_m) {
 Vector2 EvalTransmissionError(const LinearMeshCore& core, double theta) {
   Vector2 e = Vector2::Zero();
   if (core.transmission_error()) Evaluate(*core.transmission_error(), theta, e);
+  const TransmissionErrorSidebands& sb = core.sidebands();
+  if (!sb.empty()) {
+    // 2 Re Σ c_i e^{i m_i θ/P_s}, θ reduced to one period first (θ may be ~1e7 rad).
+    const double p = static_cast<double>(sb.period_meshes);
+    const double phi = std::fmod(theta, 2.0 * std::numbers::pi * p) / p;
+    for (int i = 0; i < sb.size(); ++i) {
+      const double a = std::fmod(static_cast<double>(sb.harmonics[static_cast<size_t>(i)]) * phi,
+                                 2.0 * std::numbers::pi);
+      const std::complex<double> z(std::cos(a), std::sin(a));
+      e(0) += 2.0 * (sb.coefficients(0, i) * z).real();
+      e(1) += 2.0 * (sb.coefficients(1, i) * z).real();
+    }
+  }
   return e;
 }
 
-Vector2 EvalTransmissionErrorLoad(const LinearMeshCore& core, double theta) {
+std::int64_t CoefficientPeriodMeshes(const LinearMeshCore& core) {
+  std::int64_t p = PeriodMeshes(core.stiffness());
+  if (core.transmission_error()) p = std::lcm(p, PeriodMeshes(*core.transmission_error()));
+  return p;
+}
+
+Vector2 CalcMeanTransmissionErrorLoad(const LinearMeshCore& core, int samples_per_mesh) {
+  GEARDYN_THROW_UNLESS(samples_per_mesh >= 1,
+                       "samples_per_mesh: must be >= 1, got " << samples_per_mesh);
+  // The sidebands' lines never meet a harmonic of K2 (constructor), so K2 ε_sb has no mean.
   if (!core.transmission_error()) return Vector2::Zero();
+  const std::int64_t period = CoefficientPeriodMeshes(core);
+  const std::int64_t samples = static_cast<std::int64_t>(samples_per_mesh) * period;
+  Vector2 sum = Vector2::Zero();
+  Vector2 e = Vector2::Zero();
+  for (std::int64_t s = 0; s < samples; ++s) {
+    const double theta = 2.0 * std::numbers::pi * static_cast<double>(period) *
+                         static_cast<double>(s) / static_cast<double>(samples);
+    Evaluate(*core.transmission_error(), theta, e);
+    sum += EvalStiffnessCore(core, theta) * e;
+  }
+  return sum / static_cast<double>(samples);
+}
+
+Vector2 EvalTransmissionErrorLoad(const LinearMeshCore& core, double theta) {
+  if (!core.has_transmission_error()) return Vector2::Zero();
   const Matrix2 K2 = EvalStiffnessCore(core, theta);
   const Vector2 e = EvalTransmissionError(core, theta);
   return K2 * e;  // f_mesh = Gᵀ K2 ε (spec 01 §3)
@@ -192,14 +253,14 @@ double ResolveDampingCoefficient(const LinearMeshCore& core, double equivalent_m
 TimeDependence Classify(const LinearMeshCore& core) { return Classify(core.stiffness()); }
 
 TimeDependence ClassifyExcitation(const LinearMeshCore& core) {
+  if (!core.sidebands().empty()) return TimeDependence::kSmoothPeriodic;
   if (!core.transmission_error()) return TimeDependence::kConstant;
   return Combine(Classify(core.stiffness()), Classify(*core.transmission_error()));
 }
 
 std::int64_t PeriodMeshes(const LinearMeshCore& core) {
-  std::int64_t p = PeriodMeshes(core.stiffness());
-  if (core.transmission_error()) p = std::lcm(p, PeriodMeshes(*core.transmission_error()));
-  return p;
+  const std::int64_t p = CoefficientPeriodMeshes(core);
+  return core.sidebands().empty() ? p : std::lcm(p, core.sidebands().period_meshes);
 }
 
 // ---------------------------------------------------------------------------- SliceMeshCore

@@ -12,7 +12,7 @@ MeshCoreValues EvalMeshCoreValues(const MeshCore& core, double c_m, SliceMeshWor
                  [&](const LinearMeshCore& linear) {
                    if (want & kWantStiffness) out.stiffness = EvalStiffnessCore(linear, phase);
                    if (want & kWantDamping) out.damping = EvalDampingCore(linear, phase, c_m);
-                   if ((want & kWantLoad) && linear.transmission_error()) {
+                   if ((want & kWantLoad) && linear.has_transmission_error()) {
                      out.load = EvalTransmissionErrorLoad(linear, phase);
                    }
                  },

@@ -51,7 +51,7 @@ Vector2 TransmissionError(const SystemMesh& mesh, double theta) {
 
 bool HasTransmissionError(const SystemMesh& mesh) {
   const auto* core = std::get_if<LinearMeshCore>(&mesh.core);
-  return core != nullptr && core->transmission_error().has_value();
+  return core != nullptr && core->has_transmission_error();
 }
 
 }  // namespace

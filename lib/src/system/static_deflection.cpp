@@ -82,16 +82,7 @@ StaticDeflectionResult SolveStaticDeflection(const SystemModel& model,
     // Mean mesh force F̄ = K̄2 δ̄ − mean(K2 ε) (spec 01 §3: F = K2 (δ − ε)).
     Vector2 te_load = Vector2::Zero();
     if (const auto* core = std::get_if<LinearMeshCore>(&mesh.core)) {
-      if (core->transmission_error()) {
-        const std::int64_t period = PeriodMeshes(*core);
-        const std::int64_t samples = static_cast<std::int64_t>(options.samples_per_period) * period;
-        for (std::int64_t s = 0; s < samples; ++s) {
-          te_load += EvalTransmissionErrorLoad(*core, 2.0 * M_PI * static_cast<double>(period) *
-                                                          static_cast<double>(s) /
-                                                          static_cast<double>(samples));
-        }
-        te_load /= static_cast<double>(samples);
-      }
+      te_load = CalcMeanTransmissionErrorLoad(*core, options.samples_per_period);
     }
     const Vector2 force = mesh.mean_core_stiffness * delta - te_load;
     MeshStaticState state;

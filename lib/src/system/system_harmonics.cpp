@@ -180,6 +180,108 @@ MatrixXc ErrorPeriodValueHarmonics(const SystemMesh& mesh, const LinearMeshCore&
   return values;
 }
 
+// The 8 value channels' harmonics n = 0 … N (units of 1/P_k, column n) of a core without
+// sidebands, in its own phase.
+MatrixXc CoefficientValueHarmonics(const SystemMesh& mesh, std::int64_t core_period, int N) {
+  MatrixXc values(kNumValueChannels, N + 1);
+  if (HasErrorPeriodLoad(mesh.core, core_period)) {
+    return ErrorPeriodValueHarmonics(mesh, std::get<LinearMeshCore>(mesh.core), core_period, N);
+  }
+  const FourierCoefficient series = ToFourier(MeshValueCoefficient(mesh, core_period, N, true), N);
+  values.col(0) = series.mean().cast<std::complex<double>>();
+  if (N > 0) values.rightCols(N) = series.harmonics();
+  // K2, C2 from their own coefficients when those are stepwise but the load's are not (a
+  // spur pair with a smooth ε): exact sinc sums instead of sampled steps.
+  if (!internal::AllStepwise(internal::MeshOperatorCoefficients(mesh.core, true)) &&
+      internal::AllStepwise(internal::MeshOperatorCoefficients(mesh.core, false))) {
+    const FourierCoefficient operator_series =
+        ToFourier(MeshValueCoefficient(mesh, core_period, N, false), N);
+    values.col(0).head<6>() = operator_series.mean().head<6>().cast<std::complex<double>>();
+    if (N > 0) values.block(0, 1, 6, N) = operator_series.harmonics().topRows<6>();
+  }
+  return values;
+}
+
+// The mesh with its linear core's sidebands removed (the coefficient part of ε only).
+SystemMesh WithoutSidebands(const SystemMesh& mesh) {
+  SystemMesh out = mesh;
+  if (const auto* c = std::get_if<LinearMeshCore>(&mesh.core); c && !c->sidebands().empty()) {
+    out.core = LinearMeshCore(c->level(), c->stiffness(), c->half_face_width(),
+                              c->transmission_error(), c->damping(), c->is_mean_lti());
+  }
+  return out;
+}
+
+// The load K2 ε_sb of a core's sidebands at its harmonics n (units of 1/P_c, the core period
+// with the sidebands), in the core's own phase: with K2 = Σ_j K2_j e^{ijθ/P_K} and
+// ε_sb = Σ_i c_i e^{i m_i θ/P_s} + conj, harmonic n collects K2_j c_i where
+// j r_K + m_i r_s = n and K2_j conj(c_i) where j r_K − m_i r_s = n (r_K = P_c/P_K, r_s = P_c/P_s):
+// exact for the core's K2 (steps exact, samples as their own interpolant).
+class SidebandLoad {
+ public:
+  SidebandLoad(const SystemMesh& stripped, const LinearMeshCore& core, std::int64_t core_period,
+               std::int64_t max_n)
+      : sb_(core.sidebands()) {
+    const std::int64_t pk = PeriodMeshes(core.stiffness());
+    rk_ = core_period / pk;
+    rs_ = core_period / sb_.period_meshes;
+    std::int64_t reach = 0;
+    for (std::int64_t m : sb_.harmonics) reach = std::max(reach, m * rs_);
+    const std::int64_t J = (max_n + reach) / rk_ + 1;
+    GEARDYN_THROW_UNLESS(J < (std::int64_t{1} << 26),
+                         "sidebands: " << J << " stiffness harmonics needed (too many)");
+    J_ = static_cast<int>(J);
+    const FourierCoefficient op =
+        ToFourier(MeshValueCoefficient(stripped, pk, J_, /*with_load=*/false), J_);
+    k2_.resize(static_cast<size_t>(J_) + 1);
+    for (int j = 0; j <= J_; ++j) {
+      const VectorXc c = j == 0 ? VectorXc(op.mean().cast<std::complex<double>>())
+                                : VectorXc(op.harmonics().col(j - 1));
+      k2_[static_cast<size_t>(j)] << c(0), c(1), c(1), c(2);
+    }
+  }
+  // Harmonic n (any sign) of K2 ε_sb.
+  Vector2c At(std::int64_t n) const {
+    Vector2c load = Vector2c::Zero();
+    for (int i = 0; i < sb_.size(); ++i) {
+      const std::int64_t shift = sb_.harmonics[static_cast<size_t>(i)] * rs_;
+      const Vector2c c = sb_.coefficients.col(i);
+      if ((n - shift) % rk_ == 0) load += K2((n - shift) / rk_) * c;
+      if ((n + shift) % rk_ == 0) load += K2((n + shift) / rk_) * c.conjugate();
+    }
+    return load;
+  }
+
+ private:
+  Matrix2c K2(std::int64_t j) const {
+    if (std::abs(j) > J_) return Matrix2c::Zero();
+    const Matrix2c& x = k2_[static_cast<size_t>(std::abs(j))];
+    return j >= 0 ? x : Matrix2c(x.conjugate());
+  }
+  const TransmissionErrorSidebands& sb_;
+  std::int64_t rk_ = 1, rs_ = 1;
+  int J_ = 0;
+  std::vector<Matrix2c> k2_;
+};
+
+// The value channels n = 0 … N (units of 1/P_c, column n) of any core in its own phase: the
+// coefficient part (CoefficientValueHarmonics at its own period) plus the sidebands' load.
+MatrixXc MeshValueHarmonics(const SystemMesh& mesh, std::int64_t core_period, int N) {
+  const auto* linear = std::get_if<LinearMeshCore>(&mesh.core);
+  if (linear == nullptr || linear->sidebands().empty()) {
+    return CoefficientValueHarmonics(mesh, core_period, N);
+  }
+  const SystemMesh stripped = WithoutSidebands(mesh);
+  const std::int64_t pb = internal::MeshCorePeriod(stripped.core);
+  const std::int64_t rb = core_period / pb;
+  const MatrixXc base = CoefficientValueHarmonics(stripped, pb, static_cast<int>(N / rb));
+  MatrixXc values = MatrixXc::Zero(kNumValueChannels, N + 1);
+  for (Eigen::Index nb = 0; nb < base.cols(); ++nb) values.col(nb * rb) = base.col(nb);
+  const SidebandLoad sidebands(stripped, *linear, core_period, N);
+  for (int n = 0; n <= N; ++n) values.col(n).tail<2>() += sidebands.At(n);
+  return values;
+}
+
 }  // namespace
 
 std::vector<MeshHarmonics> ExpandMeshHarmonics(const SystemModel& model, int num_harmonics) {
@@ -198,27 +300,7 @@ std::vector<MeshHarmonics> ExpandMeshHarmonics(const SystemModel& model, int num
     // System harmonic m is mesh harmonic n = m / q (q = P / P_k); others vanish.
     const std::int64_t q = system_period / core_period;
     const int mesh_harmonics = static_cast<int>(num_harmonics / q);
-    MatrixXc values(kNumValueChannels, mesh_harmonics + 1);  // column n: harmonic n of 1/P_k
-    if (HasErrorPeriodLoad(mesh.core, core_period)) {
-      values = ErrorPeriodValueHarmonics(mesh, std::get<LinearMeshCore>(mesh.core), core_period,
-                                         mesh_harmonics);
-    } else {
-      const FourierCoefficient series =
-          ToFourier(MeshValueCoefficient(mesh, core_period, mesh_harmonics, true), mesh_harmonics);
-      values.col(0) = series.mean().cast<std::complex<double>>();
-      if (mesh_harmonics > 0) values.rightCols(mesh_harmonics) = series.harmonics();
-      // K2, C2 from their own coefficients when those are stepwise but the load's are not (a
-      // spur pair with a smooth ε): exact sinc sums instead of sampled steps.
-      if (!internal::AllStepwise(internal::MeshOperatorCoefficients(mesh.core, true)) &&
-          internal::AllStepwise(internal::MeshOperatorCoefficients(mesh.core, false))) {
-        const FourierCoefficient operator_series = ToFourier(
-            MeshValueCoefficient(mesh, core_period, mesh_harmonics, false), mesh_harmonics);
-        values.col(0).head<6>() = operator_series.mean().head<6>().cast<std::complex<double>>();
-        if (mesh_harmonics > 0) {
-          values.block(0, 1, 6, mesh_harmonics) = operator_series.harmonics().topRows<6>();
-        }
-      }
-    }
+    const MatrixXc values = MeshValueHarmonics(mesh, core_period, mesh_harmonics);
     for (int n = 0; n <= mesh_harmonics; ++n) {
       VectorXc c = values.col(n);
       // θ_k = θ + φ_k: the mesh's e^{inθ_k/P_k} is e^{inφ_k/P_k} e^{imθ/P} in system phase.
@@ -228,6 +310,91 @@ std::vector<MeshHarmonics> ExpandMeshHarmonics(const SystemModel& model, int num
       h.stiffness[m] << c(0), c(1), c(1), c(2);
       h.damping[m] << c(3), c(4), c(4), c(5);
       h.load[m] << c(6), c(7);
+    }
+    out.push_back(std::move(h));
+  }
+  return out;
+}
+
+std::vector<SparseMeshHarmonics> ExpandMeshHarmonicsSparse(
+    const SystemModel& model, std::int64_t operator_period, int J,
+    const std::vector<std::int64_t>& harmonics) {
+  GEARDYN_THROW_UNLESS(J >= 0, "ExpandMeshHarmonicsSparse: J must be >= 0, got " << J);
+  CheckSingleMeshFrequency(model, "ExpandMeshHarmonicsSparse");
+  const std::int64_t P = model.period_meshes();
+  GEARDYN_THROW_UNLESS(operator_period >= 1 && P % operator_period == 0,
+                       "ExpandMeshHarmonicsSparse: operator_period "
+                           << operator_period << " must divide the period " << P);
+  const std::int64_t q = P / operator_period;
+  std::int64_t max_m = static_cast<std::int64_t>(J) * q;
+  for (std::int64_t m : harmonics) {
+    GEARDYN_THROW_UNLESS(m >= 0, "ExpandMeshHarmonicsSparse: harmonics must be >= 0, got " << m);
+    max_m = std::max(max_m, m);
+  }
+  std::vector<SparseMeshHarmonics> out;
+  out.reserve(model.meshes().size());
+  for (const SystemMesh& mesh : model.meshes()) {
+    SparseMeshHarmonics h;
+    h.stiffness.assign(static_cast<size_t>(J) + 1, Matrix2c::Zero());
+    h.damping.assign(static_cast<size_t>(J) + 1, Matrix2c::Zero());
+    h.load.assign(harmonics.size(), Vector2c::Zero());
+    h.transmission_error.assign(harmonics.size(), Vector2c::Zero());
+    const std::int64_t pc = internal::MeshCorePeriod(mesh.core);
+    const std::int64_t qc = P / pc;  // system harmonic m is core harmonic m / qc
+    const SystemMesh stripped = WithoutSidebands(mesh);
+    const std::int64_t pb = internal::MeshCorePeriod(stripped.core);
+    const std::int64_t rb = pc / pb;  // core harmonic n is coefficient harmonic n / rb
+    const std::int64_t nb_max = max_m / (qc * rb);
+    GEARDYN_THROW_UNLESS(nb_max <= (std::int64_t{1} << 24),
+                         "mesh '" << mesh.name << "': its coefficients repeat over " << pb
+                                  << " mesh cycles; their expansion up to the requested harmonic "
+                                  << max_m << " of 1/" << P << " would need " << nb_max
+                                  << " harmonics (a long-period ε: pitch errors?)");
+    const MatrixXc base = CoefficientValueHarmonics(stripped, pb, static_cast<int>(nb_max));
+    const auto* linear = std::get_if<LinearMeshCore>(&mesh.core);
+    std::optional<SidebandLoad> sidebands;
+    std::optional<FourierCoefficient> eps;  // the ε coefficient's series
+    std::int64_t re = 1;                    // core harmonic n is ε harmonic n / re
+    if (linear != nullptr && !linear->sidebands().empty()) {
+      sidebands.emplace(stripped, *linear, pc, max_m / qc);
+    }
+    if (linear != nullptr && linear->transmission_error()) {
+      re = pc / PeriodMeshes(*linear->transmission_error());
+      eps = ToFourier(*linear->transmission_error(), static_cast<int>(max_m / (qc * re)));
+    }
+    const auto phase = [&](std::int64_t n) {  // θ_k = θ + φ_k (see ExpandMeshHarmonics)
+      return std::polar(1.0, static_cast<double>(n) * mesh.phase_offset / static_cast<double>(pc));
+    };
+    for (int j = 0; j <= J; ++j) {
+      const std::int64_t m = static_cast<std::int64_t>(j) * q;
+      if (m % qc != 0 || (m / qc) % rb != 0) continue;
+      const std::int64_t n = m / qc;
+      const VectorXc c = base.col(n / rb) * phase(n);
+      h.stiffness[static_cast<size_t>(j)] << c(0), c(1), c(1), c(2);
+      h.damping[static_cast<size_t>(j)] << c(3), c(4), c(4), c(5);
+    }
+    for (size_t i = 0; i < harmonics.size(); ++i) {
+      const std::int64_t m = harmonics[i];
+      if (m % qc != 0) continue;
+      const std::int64_t n = m / qc;
+      Vector2c load = Vector2c::Zero(), e = Vector2c::Zero();
+      if (n % rb == 0) load = base.col(n / rb).tail<2>();
+      if (sidebands) load += sidebands->At(n);
+      if (eps && n % re == 0) {
+        const std::int64_t a = n / re;
+        e = a == 0 ? Vector2c(eps->mean().cast<std::complex<double>>())
+                   : Vector2c(eps->harmonics().col(a - 1));
+      }
+      if (linear != nullptr) {
+        const TransmissionErrorSidebands& sb = linear->sidebands();
+        for (int l = 0; l < sb.size(); ++l) {
+          if (sb.harmonics[static_cast<size_t>(l)] * (pc / sb.period_meshes) == n) {
+            e += sb.coefficients.col(l);
+          }
+        }
+      }
+      h.load[i] = load * phase(n);
+      h.transmission_error[i] = e * phase(n);
     }
     out.push_back(std::move(h));
   }

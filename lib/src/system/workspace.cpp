@@ -269,19 +269,12 @@ const VectorX& AssembleMeanLoad(const SystemModel& model, SystemWorkspace& ws,
   const std::vector<SystemMesh>& meshes = model.meshes();
   for (int k = 0; k < static_cast<int>(meshes.size()); ++k) {
     const auto* core = std::get_if<LinearMeshCore>(&meshes[k].core);
-    if (core == nullptr || !core->transmission_error()) {
+    if (core == nullptr || !core->has_transmission_error()) {
       ws.mesh_load[k].setZero();
       continue;
     }
-    const std::int64_t period = PeriodMeshes(*core);
-    const std::int64_t samples = static_cast<std::int64_t>(samples_per_period) * period;
-    Vector2 sum = Vector2::Zero();
-    for (std::int64_t s = 0; s < samples; ++s) {
-      const double phase = 2.0 * M_PI * static_cast<double>(period) * static_cast<double>(s) /
-                           static_cast<double>(samples);
-      sum += EvalTransmissionErrorLoad(*core, phase);
-    }
-    ws.mesh_load[k].noalias() = meshes[k].G.transpose() * (sum / static_cast<double>(samples));
+    ws.mesh_load[k].noalias() =
+        meshes[k].G.transpose() * CalcMeanTransmissionErrorLoad(*core, samples_per_period);
     ScatterLoad(meshes[k], ws.mesh_load[k], ws.load);
   }
   return ws.load;

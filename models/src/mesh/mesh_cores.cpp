@@ -100,8 +100,12 @@ MeshCoreSource MakeMeshCoreSource(const GearPairGeometry& geometry,
   const ZoneOfAction zone = MakeZoneOfAction(geometry, drive_sign);
   std::vector<std::string> warnings;
   StiffnessProfile profile = ResolveStiffnessProfile(stiffness, geometry, zone, &warnings);
-  MeshCoreSource source{ContactLineModel(zone, std::move(profile)), std::nullopt, MeshDamping{},
-                        geometry.backlash_normal, std::move(warnings)};
+  MeshCoreSource source{ContactLineModel(zone, std::move(profile)),
+                        std::nullopt,
+                        MeshDamping{},
+                        geometry.backlash_normal,
+                        std::move(warnings),
+                        {}};
   return source;
 }
 
@@ -168,7 +172,7 @@ LinearMeshCore MakeLinearMeshCore(const MeshCoreSource& source, MeshModelLevel l
   }
   LinearMeshCore core(core_level, MakeMeshCoefficient(source.contact_lines, options),
                       source.contact_lines.half_face_width(), source.transmission_error,
-                      source.damping);
+                      source.damping, /*mean_lti=*/false, source.transmission_error_sidebands);
   if (level == MeshModelLevel::kMeanLti) return MakeMeanLinearMeshCore(core);
   return core;
 }
@@ -201,6 +205,9 @@ SliceMeshCore MakeSliceMeshCore(const MeshCoreSource& source, int num_slices,
   CheckNumSlices(num_slices);
   std::string why;
   GEARDYN_THROW_UNLESS(options.IsValid(&why), "options." << why);
+  GEARDYN_THROW_UNLESS(source.transmission_error_sidebands.empty(),
+                       "transmission_error_sidebands: the slice model needs ε as a table of its "
+                       "separations over the hunting period, not as sidebands");
   const ContactLineModel& model = source.contact_lines;
   const VectorX sigma = CalcSliceSigma(model, num_slices);
 

@@ -369,6 +369,27 @@ MatrixXc CalcSeparationHarmonics(const TransmissionErrorModel& model,
   return out;
 }
 
+TransmissionErrorSidebands MakeRunoutSidebands(const UnloadedSeparation& separation) {
+  const ToothErrors& e = separation.errors();
+  TransmissionErrorSidebands out;
+  if (!(e.pinion_runout > 0.0) && !(e.gear_runout > 0.0)) return out;
+  out.period_meshes = separation.period_meshes();
+  const double cos_b = std::cos(separation.zone().base_helix_angle);
+  std::vector<std::complex<double>> c;
+  const auto add = [&](int teeth, double runout, double phase, double sign, const char* field) {
+    if (!(runout > 0.0)) return;
+    GEARDYN_THROW_UNLESS(teeth >= 2, field << ": a runout line on a gear of " << teeth
+                                           << " tooth is a mesh order; use the table form");
+    out.harmonics.push_back(out.period_meshes / teeth);
+    c.push_back(std::polar(0.5 * sign * cos_b * runout, phase));
+  };
+  add(e.pinion_teeth, e.pinion_runout, e.pinion_runout_phase, -1.0, "errors.pinion_teeth");
+  add(e.gear_teeth, e.gear_runout, e.gear_runout_phase, 1.0, "errors.gear_teeth");
+  out.coefficients = MatrixXc::Zero(2, static_cast<Eigen::Index>(c.size()));
+  for (size_t i = 0; i < c.size(); ++i) out.coefficients(0, static_cast<Eigen::Index>(i)) = c[i];
+  return out;
+}
+
 TableCoefficient MakeTransmissionErrorTableCoefficient(const TransmissionErrorModel& model,
                                                        int samples_per_mesh) {
   const std::int64_t total = TotalSamples(model, samples_per_mesh);

@@ -2,6 +2,7 @@
 // error channels and the requested level, all from one MeshCoreSource (spec 01 §4, §5).
 #include "geardyn/models/scene/mesh_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -77,30 +78,19 @@ LinearMeshCore MakeUserCore(const MeshDef& mesh) {
   return model.level == MeshModelLevel::kMeanLti ? MakeMeanLinearMeshCore(core) : core;
 }
 
-// ε(θ) from the modifications and errors on the contact lines (none when they are all zero), as
-// a table (or its Fourier series) over the hunting period, bounded by
-// kMaxTransmissionErrorSamples samples.
-std::optional<Coefficient> MakeTransmissionError(const Scene& scene, const MeshDef& mesh,
-                                                 const ContactLineModel& lines) {
-  const std::optional<TransmissionErrorModel> te =
-      MakeMeshTransmissionErrorModel(scene, mesh, lines);
-  if (!te) return std::nullopt;
+// ε(θ) from the modifications and errors on the contact lines (none when they are all zero): a
+// table (or its Fourier series) over the hunting period, bounded by kMaxTransmissionErrorSamples
+// samples; or, for a runout on a linear level without pitch deviations (RunoutForm), the table of
+// ε without the runout (mesh-periodic) plus the runout's two lines.
+struct MeshTransmissionError {
+  std::optional<Coefficient> coefficient;
+  TransmissionErrorSidebands sidebands;
+};
+
+std::optional<Coefficient> TransmissionErrorCoefficient(const TransmissionErrorModel& te,
+                                                        const MeshDef& mesh) {
   const MeshCoefficientOptions& options = mesh.model.core_options.coefficient;
-  const std::int64_t period = te->period_meshes();
-  const std::int64_t samples = static_cast<std::int64_t>(options.num_samples) * period;
-  GEARDYN_THROW_UNLESS(
-      samples <= kMaxTransmissionErrorSamples,
-      "mesh."
-          << mesh.name << ".errors: the transmission error repeats over a hunting period of "
-          << period << " mesh cycles (lcm of " << te->separation().errors().pinion_teeth << " and "
-          << te->separation().errors().gear_teeth << " teeth); its table of " << options.num_samples
-          << " samples per cycle would hold " << samples << " samples ("
-          << static_cast<double>(samples) * 16.0 / 1e9
-          << " GB, several times more in a harmonic balance), above the limit "
-          << kMaxTransmissionErrorSamples
-          << ". modes, floquet and stability-chart do not need it, and mesh samples it "
-             "directly (linear models); for a forced response lower table_samples, or give tooth "
-             "counts with a common factor, or leave out the pitch errors and runout");
+  const std::int64_t period = te.period_meshes();
   if (options.form == MeshCoefficientForm::kFourier) {
     const int per_mesh =
         options.num_terms > 0 ? options.num_terms : (options.num_samples + 1) / 2 - 1;
@@ -108,10 +98,56 @@ std::optional<Coefficient> MakeTransmissionError(const Scene& scene, const MeshD
     GEARDYN_THROW_UNLESS(terms <= std::numeric_limits<int>::max(),
                          "fourier_terms: " << per_mesh << " harmonics per mesh cycle over "
                                            << period << " cycles is too many");
-    return MakeTransmissionErrorFourierCoefficient(*te, static_cast<int>(terms),
+    return MakeTransmissionErrorFourierCoefficient(te, static_cast<int>(terms),
                                                    options.num_samples);
   }
-  return MakeTransmissionErrorTableCoefficient(*te, options.num_samples);
+  return MakeTransmissionErrorTableCoefficient(te, options.num_samples);
+}
+
+MeshTransmissionError MakeTransmissionError(const Scene& scene, const MeshDef& mesh,
+                                            const ContactLineModel& lines, RunoutForm runout) {
+  const std::optional<TransmissionErrorModel> te =
+      MakeMeshTransmissionErrorModel(scene, mesh, lines);
+  if (!te) return {};
+  const MeshCoefficientOptions& options = mesh.model.core_options.coefficient;
+  const std::int64_t period = te->period_meshes();
+  const std::int64_t samples = static_cast<std::int64_t>(options.num_samples) * period;
+  const ToothErrors& errors = te->separation().errors();
+  const auto nonzero = [](const std::vector<double>& v) {
+    return std::any_of(v.begin(), v.end(), [](double x) { return x != 0.0; });
+  };
+  const bool sidebands_apply = mesh.model.level != MeshModelLevel::kNonlinearSlices &&
+                               (errors.pinion_runout > 0.0 || errors.gear_runout > 0.0) &&
+                               !nonzero(errors.pinion_pitch_deviations) &&
+                               !nonzero(errors.gear_pitch_deviations) && errors.pinion_teeth >= 2 &&
+                               errors.gear_teeth >= 2;
+  if (sidebands_apply &&
+      (runout == RunoutForm::kSidebands ||
+       (runout == RunoutForm::kAuto && samples > kMaxTransmissionErrorSamples))) {
+    MeshTransmissionError out;
+    out.sidebands = MakeRunoutSidebands(te->separation());
+    if (te->separation().has_flank_modifications()) {
+      const TransmissionErrorModel mesh_periodic(te->contact_lines(),
+                                                 te->separation().modifications());
+      out.coefficient = TransmissionErrorCoefficient(mesh_periodic, mesh);
+    }
+    return out;
+  }
+  GEARDYN_THROW_UNLESS(
+      samples <= kMaxTransmissionErrorSamples,
+      "mesh."
+          << mesh.name << ".errors: the transmission error repeats over a hunting period of "
+          << period << " mesh cycles (lcm of " << errors.pinion_teeth << " and "
+          << errors.gear_teeth << " teeth); its table of " << options.num_samples
+          << " samples per cycle would hold " << samples << " samples ("
+          << static_cast<double>(samples) * 16.0 / 1e9
+          << " GB, several times more in a harmonic balance), above the limit "
+          << kMaxTransmissionErrorSamples
+          << ". modes, floquet and stability-chart do not need it, and mesh samples it "
+             "directly (linear models); the linear hb takes a runout alone (no pitch errors) on "
+             "a linear level as sidebands; otherwise lower table_samples, or give tooth "
+             "counts with a common factor, or leave out the pitch errors and runout");
+  return {TransmissionErrorCoefficient(*te, mesh), {}};
 }
 
 }  // namespace
@@ -177,7 +213,8 @@ int MeshDriveSign(const Scene& scene, const MeshDef& mesh, std::vector<std::stri
   return pinion_torque > 0.0 ? 1 : -1;
 }
 
-BuiltMeshCore BuildMeshCore(const Scene& scene, const MeshDef& mesh, bool transmission_error) {
+BuiltMeshCore BuildMeshCore(const Scene& scene, const MeshDef& mesh, bool transmission_error,
+                            RunoutForm runout) {
   const MeshModelDef& model = mesh.model;
   std::vector<std::string> warnings;
   for (const std::string& w : mesh.geometry.warnings)
@@ -197,7 +234,9 @@ BuiltMeshCore BuildMeshCore(const Scene& scene, const MeshDef& mesh, bool transm
   for (const std::string& w : source.warnings) warnings.push_back("mesh." + mesh.name + ": " + w);
   source.damping = model.damping;
   if (transmission_error) {
-    source.transmission_error = MakeTransmissionError(scene, mesh, source.contact_lines);
+    MeshTransmissionError te = MakeTransmissionError(scene, mesh, source.contact_lines, runout);
+    source.transmission_error = std::move(te.coefficient);
+    source.transmission_error_sidebands = std::move(te.sidebands);
   }
 
   MeshCoreOptions options = model.core_options;

@@ -325,7 +325,7 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
     const MeshDef& m = scene.meshes[k];
     const int p = GearIndex(scene, m.pinion);
     const int w = GearIndex(scene, m.gear);
-    BuiltMeshCore built = BuildMeshCore(scene, m, options.transmission_error);
+    BuiltMeshCore built = BuildMeshCore(scene, m, options.transmission_error, options.runout_form);
     for (std::string& warning : built.warnings) out.warnings.push_back(std::move(warning));
     const MeshFrame frame = CalcMeshFrame(m.geometry, out.centres[p], gamma[k], built.drive_sign);
     Matrix2x12 G = CalcMeshJacobian(frame);

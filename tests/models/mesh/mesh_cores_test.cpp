@@ -391,6 +391,7 @@ TEST(MeshCoresTest, LtvCoreWithConstantChannelsEqualsTheLtiCoreExactly) {
                               std::nullopt,
                               MeshDamping::FromCoefficient(2e3),
                               kNoBackFlank,
+                              {},
                               {}};
   const LinearMeshCore ltv = MakeLinearMeshCore(source, MeshModelLevel::kBlankenshipSingh);
   const LinearMeshCore lti = MakeLinearMeshCore(source, MeshModelLevel::kMeanLti);

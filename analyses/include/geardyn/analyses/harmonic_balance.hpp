@@ -35,7 +35,22 @@
 /// ω_m/P, dropped the mesh frequency itself whenever H < P.) HbResult::kept_harmonics lists
 /// them, highest_harmonic is the largest. The working memory grows with (2H+1)·q; an H over a
 /// long hunting period that would need more than 2 GB is refused (the constructor) or ends the
-/// tolerance search (kToleranceNotMet).
+/// tolerance search (kToleranceNotMet), unless sparse harmonics apply ("Long hunting periods").
+///
+/// **Long hunting periods** (sparse harmonics). Coprime tooth counts with a runout (997/991:
+/// P = 988 027) make q = P/P_K so large that nothing indexed up to k_max ≈ Hq fits (the dense
+/// estimate is refused above 2 GB). When every core is linear and its ε is a short-period
+/// coefficient plus a few lines (TransmissionErrorSidebands: the runout), the solver keeps only
+/// the kept harmonics (HbOptions::harmonic_storage: kAuto → sparse above the dense limit, or
+/// forced): the operator at the harmonics jq and the load K2 ε at the kept k come from
+/// ExpandMeshHarmonicsSparse (exact convolution of K2's harmonics with ε's lines), the classes
+/// are those the lines reach, each solved as before. Outputs (HbClassSampler): every output is
+/// Σ_c e^{icθ/P} E_c(θ) with an envelope E_c of one operator period, so the mean (class 0) and
+/// the RMS (Parseval over classes, orthogonal over the hunting period) are exact for the DTE
+/// (band-limited) and sampled over one operator period like the dense path for forces;
+/// dte_amplitudes are exact at the kept harmonics; the peak-to-peak values are sampled over
+/// min(q, 4096) operator periods spread over the hunting period (exact samples, but a window:
+/// a lower bound of the true value when q > 4096). kDirect is not available there.
 ///
 /// **Rigid-body modes.** A free gear train (no support about the axes) has K̄ r = 0; since K(θ) is
 /// PSD, K(θ) r = 0 for every θ and the mean part of Q_0 along r is undetermined. The solver fixes
@@ -96,6 +111,13 @@
 
 namespace geardyn {
 
+/// @brief How the harmonics are stored (@file "Long hunting periods").
+/// * kAuto — dense unless its memory estimate exceeds 2 GB and the sparse form is possible.
+/// * kDense — every harmonic 0 … k_max of the hunting period indexed (mesh harmonics, response,
+///   output samples over the hunting period).
+/// * kSparse — only the kept harmonics; outputs from the class envelopes.
+enum class HbHarmonicStorage { kAuto, kDense, kSparse };
+
 /// @brief How the linear harmonic-balance equations are solved (see the @file table).
 enum class HbMethod { kAuto, kDecoupled, kCondensed, kDirect };
 /// "auto", "decoupled", "condensed", "direct".
@@ -104,6 +126,10 @@ const char* ToString(HbMethod method);
 /// Largest H (harmonics, max_harmonics) of HbOptions: the condensed coupling of one mesh in one
 /// forcing class alone takes (2(2H+1))² complex entries, 1.1 GB at H = 2048.
 inline constexpr int kMaxHbHarmonics = 2048;
+
+/// Operator periods over which sparse harmonics sample the peak-to-peak values (all of them when
+/// the hunting period holds fewer; @file "Long hunting periods").
+inline constexpr int kHbPeakWindowPeriods = 4096;
 
 /// @brief Options of the linear harmonic balance.
 struct HbOptions {
@@ -126,6 +152,8 @@ struct HbOptions {
   bool compute_forces = true;
   /// Keep Q_k (n × (H+1)) and the DTE samples in the result.
   bool keep_harmonics = false;
+  /// Dense or sparse harmonic storage (@file "Long hunting periods"); kAuto picks.
+  HbHarmonicStorage harmonic_storage = HbHarmonicStorage::kAuto;
   /// False (with the field, value and bound in `why`) on an invalid value.
   bool IsValid(std::string* why) const;
 };
@@ -133,12 +161,16 @@ struct HbOptions {
 /// @brief Steady-state outputs of one mesh.
 struct HbMeshOutput {
   std::string name;
-  double mean_dte = 0.0;          ///< θ-mean of the DTE [m]
-  double rms_dte = 0.0;           ///< RMS of DTE − mean [m]
-  double peak_to_peak_dte = 0.0;  ///< max − min of the DTE samples [m]
-  VectorX dte_amplitudes;   ///< (k_max+1) |mean|, then 2|Y_k| of harmonic k of Ω = ω_m/P [m]
-  double mean_force = 0.0;  ///< θ-mean of F_η [N] (> 0: compression)
-  double rms_force = 0.0;   ///< RMS of F_η − mean [N]
+  double mean_dte = 0.0;  ///< θ-mean of the DTE [m]
+  double rms_dte = 0.0;   ///< RMS of DTE − mean [m]
+  /// max − min of the DTE samples [m] (sparse harmonics: over a window of the hunting period,
+  /// a lower bound; @file "Long hunting periods")
+  double peak_to_peak_dte = 0.0;
+  /// (k_max+1) |mean|, then 2|Y_k| of harmonic k of Ω = ω_m/P [m]; with sparse harmonics one
+  /// per kept harmonic, in the order of HbResult::kept_harmonics.
+  VectorX dte_amplitudes;
+  double mean_force = 0.0;          ///< θ-mean of F_η [N] (> 0: compression)
+  double rms_force = 0.0;           ///< RMS of F_η − mean [N]
   double peak_to_peak_force = 0.0;  ///< [N]
 };
 
@@ -153,18 +185,21 @@ struct HbElementOutput {
 struct HbResult {
   Summary summary;  ///< status, message, error_estimate (see @file), counters, warnings, time
   HbMethod method_used = HbMethod::kAuto;
-  double mesh_frequency_hz = 0.0;         ///< f_m [Hz]
-  std::int64_t period_meshes = 1;         ///< P [-]
-  int harmonics = 0;                      ///< H used (mesh orders when P_K = 1)
-  int highest_harmonic = 0;               ///< k_max: the largest kept harmonic of Ω = ω_m/P
-  std::vector<int> kept_harmonics;        ///< the kept one-sided k (of Ω), ascending
-  double reciprocal_condition = 1.0;      ///< smallest estimated 1/cond of the LU solves
-  int time_samples = 0;                   ///< S used
+  double mesh_frequency_hz = 0.0;     ///< f_m [Hz]
+  std::int64_t period_meshes = 1;     ///< P [-]
+  int harmonics = 0;                  ///< H used (mesh orders when P_K = 1)
+  int highest_harmonic = 0;           ///< k_max: the largest kept harmonic of Ω = ω_m/P
+  std::vector<int> kept_harmonics;    ///< the kept one-sided k (of Ω), ascending
+  bool sparse_harmonics = false;      ///< the sparse storage was used (@file)
+  double reciprocal_condition = 1.0;  ///< smallest estimated 1/cond of the LU solves
+  int time_samples = 0;  ///< S used (sparse harmonics: per operator period of the envelopes)
   std::vector<HbMeshOutput> meshes;       ///< per mesh, model order
   std::vector<HbElementOutput> elements;  ///< per element (empty unless compute_forces)
-  MatrixXc
-      response_harmonics;  ///< (n × (k_max+1)) Q_k [m, rad] when keep_harmonics (0 if not kept)
-  MatrixX dte_samples;     ///< (meshes × S) DTE at θ_s = 2πP s/S [m] when keep_harmonics
+  /// (n × (k_max+1)) Q_k [m, rad] when keep_harmonics (0 if not kept); with sparse harmonics
+  /// (n × kept) in the order of kept_harmonics.
+  MatrixXc response_harmonics;
+  /// (meshes × S) DTE at θ_s = 2πP s/S [m] when keep_harmonics (empty with sparse harmonics).
+  MatrixX dte_samples;
 };
 
 /// @brief The full linear HB system in the real layout (see the @file): A x = b.

@@ -45,6 +45,7 @@
 #include <optional>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "geardyn/common/eigen_types.hpp"
 #include "geardyn/system/coefficient.hpp"
@@ -108,6 +109,24 @@ struct MeshDamping {
 double ResolveDampingCoefficient(const MeshDamping& damping, double mean_stiffness,
                                  double equivalent_mass);
 
+// ============================================================================ sidebands
+
+/// @brief A transmission error given by a few lines over a long period (a sparse Fourier form):
+/// \f[ ε_{sb}(θ) = 2\,\mathrm{Re} \sum_i c_i\, e^{i m_i θ / P_s}, \quad m_i ≥ 1, \f]
+/// added to a LinearMeshCore's θ-coefficient ε. What a runout gives (once per revolution of each
+/// member: m = P_s/z over P_s = lcm(z_1, z_2)) when the hunting period is too long to tabulate
+/// (997/991 teeth: P_s = 988 027 mesh cycles); the linear harmonic balance then needs ε only at
+/// its kept harmonics, and pointwise evaluation costs O(lines) (docs/design.md).
+struct TransmissionErrorSidebands {
+  std::int64_t period_meshes = 1;       ///< P_s ≥ 1 [-]: the lines' period is 2π·P_s [rad]
+  std::vector<std::int64_t> harmonics;  ///< m_i ≥ 1 [-] (harmonic m of 1/P_s)
+  MatrixXc coefficients;                ///< (2 × lines) c_i: [ε_η [m]; ε_ζ [rad]]
+  /// Number of lines.
+  int size() const { return static_cast<int>(harmonics.size()); }
+  /// True without lines.
+  bool empty() const { return harmonics.empty(); }
+};
+
 // ============================================================================ LinearMeshCore
 
 /// @brief The linear mesh core of spec 01 §3: θ-coefficients (K, K·h, K·μ·b²) and optional
@@ -131,15 +150,19 @@ class LinearMeshCore {
   /// @param[in] damping mesh damping (B–S Eq. 39).
   /// @param[in] mean_lti true marks the spec level "LTI" (the stiffness must then be constant:
   ///   use MakeMeanLinearMeshCore to build it from an LTV core).
+  /// @param[in] sidebands optional lines added to ε (TransmissionErrorSidebands); none may fall
+  ///   on a harmonic of the stiffness period (m_i·P_K divisible by P_s): those belong in ε.
   /// @throws InvalidInput naming `stiffness` (channel count, or a value that is negative or makes
   ///   K2 indefinite: c0 < 0 or c0·c2 < c1²), `transmission_error` (channel count),
   ///   `half_face_width`, `damping.value` (negative or non-finite) or `mean_lti` (set with
-  ///   non-constant stiffness channels). K2 is checked at every
+  ///   non-constant stiffness channels), `sidebands` (P_s < 1, sizes, m_i < 1, a non-finite
+  ///   coefficient, a line on a stiffness harmonic). K2 is checked at every
   ///   stored value of constant, piecewise-constant and table coefficients (linear interpolation
   ///   keeps it PSD); a Fourier series is checked at its mean only.
   LinearMeshCore(MeshCoreLevel level, Coefficient stiffness, double half_face_width,
                  std::optional<Coefficient> transmission_error = std::nullopt,
-                 MeshDamping damping = {}, bool mean_lti = false);
+                 MeshDamping damping = {}, bool mean_lti = false,
+                 TransmissionErrorSidebands sidebands = {});
 
   /// The level (shape of K2).
   MeshCoreLevel level() const { return level_; }
@@ -149,6 +172,10 @@ class LinearMeshCore {
   const Coefficient& stiffness() const { return stiffness_; }
   /// (ε_η, ε_ζ) [m, rad], if any.
   const std::optional<Coefficient>& transmission_error() const { return transmission_error_; }
+  /// Lines added to ε (empty: none).
+  const TransmissionErrorSidebands& sidebands() const { return sidebands_; }
+  /// True when ε is not identically zero (a coefficient or sidebands).
+  bool has_transmission_error() const { return transmission_error_ || !sidebands_.empty(); }
   /// b [m].
   double half_face_width() const { return half_face_width_; }
   /// Mesh damping specification.
@@ -159,6 +186,7 @@ class LinearMeshCore {
   Coefficient stiffness_;
   double half_face_width_;
   std::optional<Coefficient> transmission_error_;
+  TransmissionErrorSidebands sidebands_;
   MeshDamping damping_;
   bool mean_lti_;
 };
@@ -182,8 +210,17 @@ Matrix2 EvalStiffnessCore(const LinearMeshCore& core, double theta);
 /// @return (2×2) [N·s/m, N·s, N·m·s].
 Matrix2 EvalDampingCore(const LinearMeshCore& core, double theta, double c_m);
 
-/// @brief ε(θ) = (ε_η [m], ε_ζ [rad]); zero without transmission-error channels.
+/// @brief ε(θ) = (ε_η [m], ε_ζ [rad]): the coefficient plus the sidebands; zero without either.
 Vector2 EvalTransmissionError(const LinearMeshCore& core, double theta);
+
+/// @brief The θ-mean of the load K2 ε [N, N·m] over the core's period: the coefficient part
+/// from `samples_per_mesh` samples per mesh cycle over its own period (lcm of the stiffness's
+/// and ε coefficient's), the sidebands exactly (zero: no line falls on a stiffness harmonic).
+/// @throws InvalidInput if samples_per_mesh < 1.
+Vector2 CalcMeanTransmissionErrorLoad(const LinearMeshCore& core, int samples_per_mesh);
+
+/// @brief P of the core without its sidebands: lcm of the stiffness's and ε coefficient's periods.
+std::int64_t CoefficientPeriodMeshes(const LinearMeshCore& core);
 
 /// @brief The load pair K2(θ) ε(θ) [N, N·m] on δ (f_mesh = Gᵀ K2 ε, spec 01 §3); for the
 /// mean-LTI level K̄2 ε(θ). No allocation.
@@ -201,7 +238,8 @@ TimeDependence Classify(const LinearMeshCore& core);
 /// without ε).
 TimeDependence ClassifyExcitation(const LinearMeshCore& core);
 
-/// @brief P of the core: lcm of its coefficients' period_meshes() (period 2π·P [rad]).
+/// @brief P of the core: lcm of its coefficients' period_meshes() and the sidebands' P_s (period
+/// 2π·P [rad]).
 std::int64_t PeriodMeshes(const LinearMeshCore& core);
 
 // ============================================================================ SliceMeshCore

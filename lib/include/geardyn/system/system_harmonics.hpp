@@ -60,6 +60,28 @@ struct SystemHarmonics {
 /// @throws InvalidInput if num_harmonics < 0 or a mesh's phase ratio is not 1.
 std::vector<MeshHarmonics> ExpandMeshHarmonics(const SystemModel& model, int num_harmonics);
 
+/// @brief The harmonics of one mesh that a forced response over a long hunting period needs: the
+/// operator at the harmonics jq of the operator frequency, the load and ε at chosen harmonics.
+struct SparseMeshHarmonics {
+  std::vector<Matrix2c> stiffness;           ///< K2 at system harmonic j·q, j = 0 … J
+  std::vector<Matrix2c> damping;             ///< C2 at system harmonic j·q, j = 0 … J
+  std::vector<Vector2c> load;                ///< (K2 ε) at harmonics[i] [N, N·m]
+  std::vector<Vector2c> transmission_error;  ///< ε at harmonics[i] [m, rad]
+};
+
+/// @brief The same numbers as ExpandMeshHarmonics (system phase, harmonic m of 1/P), but only at
+/// the operator harmonics jq (q = P/operator_period, j = 0 … J) and at the given load harmonics:
+/// memory O(J + harmonics), never O(P). The coefficient part of each core (its stiffness and ε
+/// coefficient, period P_b) is expanded at its own period up to the harmonic the request
+/// reaches, the sidebands (TransmissionErrorSidebands) add their lines exactly.
+/// @param[in] operator_period P_K: a multiple of every core's stiffness period dividing P.
+/// @param[in] J ≥ 0 operator harmonics. @param[in] harmonics load harmonics m ≥ 0 (of 1/P).
+/// @throws InvalidInput on a negative m or J, a phase ratio ≠ 1, a coefficient part whose
+///   expansion would need more than 2^24 harmonics (a long-period ε coefficient: pitch errors).
+std::vector<SparseMeshHarmonics> ExpandMeshHarmonicsSparse(
+    const SystemModel& model, std::int64_t operator_period, int J,
+    const std::vector<std::int64_t>& harmonics);
+
 /// @brief K_m, C_m, f_m as dense n×n / n (O(N n²) memory: small systems only).
 SystemHarmonics AssembleSystemHarmonics(const SystemModel& model,
                                         const std::vector<MeshHarmonics>& meshes);

@@ -74,6 +74,9 @@ struct MeshCoreSource {
   MeshDamping damping;                ///< B–S Eq. (39) damping of every level
   double backlash = kNoBackFlank;     ///< j [m], normal clearance (slices only)
   std::vector<std::string> warnings;  ///< from the stiffness source (ISO validity notes)
+  /// Lines added to ε (MakeRunoutSidebands: a runout over a hunting period too long to tabulate);
+  /// linear levels only.
+  TransmissionErrorSidebands transmission_error_sidebands;
 };
 
 /// @brief Resolves a stiffness source on a zone of action to a profile k(r).

@@ -37,6 +37,7 @@
 #include "geardyn/models/mesh/contact_lines.hpp"
 #include "geardyn/models/mesh/tooth_modifications.hpp"
 #include "geardyn/system/coefficient.hpp"
+#include "geardyn/system/mesh_core.hpp"
 
 namespace geardyn {
 
@@ -141,6 +142,18 @@ FourierCoefficient MakeSeparationFourierCoefficient(const TransmissionErrorModel
 /// @throws InvalidInput naming harmonics (a negative m).
 MatrixXc CalcSeparationHarmonics(const TransmissionErrorModel& model,
                                  const std::vector<std::int64_t>& harmonics);
+
+/// @brief The runout part of ε as lines (a sparse Fourier form, mesh_core.hpp): a runout is uniform
+/// on every contact line, so it shifts ε by [e_runout(θ), 0] exactly (K2⁻¹[e K, −e K·h] = [e, 0]),
+/// and e_runout = cos β_b [−r_e1 cos(θ/z_1 + φ_1) + r_e2 cos(θ/z_2 + φ_2)]
+/// (tooth_modifications.hpp) is two lines over P_s = lcm(z_1, z_2): m = P_s/z_1 with
+/// c = −cos β_b r_e1 e^{iφ_1}/2 and m = P_s/z_2 with c = cos β_b r_e2 e^{iφ_2}/2 (ε_ζ: 0).
+/// Together with ε of the same separation without the runout (period 1 without pitch errors) it
+/// is the exact ε of CalcTransmissionError.
+/// @return empty without a runout.
+/// @throws InvalidInput naming errors.pinion_teeth / errors.gear_teeth when a member with a
+///   runout has fewer than 2 teeth (its line would be a mesh order: use the table).
+TransmissionErrorSidebands MakeRunoutSidebands(const UnloadedSeparation& separation);
 
 /// @brief S = samples_per_mesh·P exact samples of ε = (ε_η [m], ε_ζ [rad]) (linear interpolation).
 /// @throws InvalidInput naming samples_per_mesh.

@@ -46,6 +46,16 @@ struct UserMeshParameters {
   std::optional<Coefficient> transmission_error;
 };
 
+/// @brief How BuildMeshCore gives a runout to a linear core (docs/design.md "Long hunting
+/// periods"). Sidebands apply only to linear levels without pitch deviations (the runout is then
+/// two lines over the hunting period, MakeRunoutSidebands, and ε otherwise mesh-periodic); else the
+/// table.
+enum class RunoutForm {
+  kTable,      ///< in the ε table over the hunting period (refused above the sample limit)
+  kAuto,       ///< as sidebands when that table would exceed kMaxTransmissionErrorSamples
+  kSidebands,  ///< as sidebands whenever they apply
+};
+
 /// @brief The mesh model of one scene mesh: level, data sources and options (all SI).
 struct MeshModelDef {
   /// Level of the model hierarchy (spec 01 §5). It overrides core_options.level.
@@ -116,7 +126,8 @@ int MeshDriveSign(const Scene& scene, const MeshDef& mesh,
 ///   parameters with slices, modifications, errors or stiffness_per_length), or as the builders.
 /// @param[in] transmission_error false: no ε from the contact lines (modifications and tooth
 ///   errors ignored: for analyses of the mean operator only; SceneSystemOptions).
-BuiltMeshCore BuildMeshCore(const Scene& scene, const MeshDef& mesh,
-                            bool transmission_error = true);
+/// @param[in] runout how a runout reaches a linear core (RunoutForm).
+BuiltMeshCore BuildMeshCore(const Scene& scene, const MeshDef& mesh, bool transmission_error = true,
+                            RunoutForm runout = RunoutForm::kTable);
 
 }  // namespace geardyn

@@ -82,6 +82,11 @@ struct SceneSystemOptions {
   /// (lcm(z_1, z_2) mesh cycles), the costliest part of the build. Meshes then load nothing through
   /// K2 ε, and SystemModel::period_meshes() is the operator's.
   bool transmission_error = true;
+  /// How a runout reaches the linear cores (RunoutForm, mesh_model.hpp): kTable everywhere but
+  /// the linear hb, which takes kAuto (sidebands when the hunting period is too long to tabulate,
+  /// solved with sparse harmonics). Analyses that sample ε over the hunting period must keep
+  /// kTable.
+  RunoutForm runout_form = RunoutForm::kTable;
   /// What the model is built for, named by the error when a body lacks `mass` or `inertia`
   /// (optional in a scene): "<file>:<line>: gear.pinion.mass: required by modes (mass matrix)".
   std::string analysis = "the system model";
