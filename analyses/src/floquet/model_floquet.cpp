@@ -119,7 +119,8 @@ PeriodicSecondOrderSystem MakeModelSystem(const SystemModel& model, double omega
 // One block (or the whole model): selection, then the generic engine.
 FloquetResult ComputeModelFloquet(const SystemModel& model, const FloquetOptions& options) {
   const double omega_m = 2.0 * std::numbers::pi * options.mesh_frequency_hz;
-  const FloquetMethod method = SelectFloquetMethod(model, options);
+  MeshDrivenBasis basis;
+  const FloquetMethod method = SelectFloquetMethod(model, options, &basis);
   const int n = model.num_dofs();
   if (method == FloquetMethod::kModalProjection) {
     const FloquetMethod inner =
@@ -128,7 +129,6 @@ FloquetResult ComputeModelFloquet(const SystemModel& model, const FloquetOptions
     int initial = 0;
     if (options.num_modes == 0) {
       // Automatic basis: the modes that drive the parametric resonances at this f_m first.
-      const MeshDrivenBasis basis = SelectMeshDrivenBasis(model, options.mesh_frequency_hz);
       cached = basis.modes;
       initial = basis.num_priority;
     }
@@ -147,9 +147,21 @@ FloquetResult ComputeModelFloquet(const SystemModel& model, const FloquetOptions
       }
       return MatrixX(cached.leftCols(std::min<int>(m, static_cast<int>(cached.cols()))));
     };
-    FloquetResult r = ModalProjectionFloquet(
-        modes, n, [&](const MatrixX& V) { return MakeModelSystem(model, omega_m, inner, 0, V); },
-        options, initial);
+    auto project = [&](const MatrixX& V) { return MakeModelSystem(model, omega_m, inner, 0, V); };
+    FloquetResult r;
+    if (options.method == FloquetMethod::kAuto && options.num_modes == 0) {
+      // kAuto: accept a basis whose estimate of max|λ| does not decide the verdict, else widen,
+      // else the unprojected system (auto_projection.cpp).
+      auto full = [&]() {
+        const PeriodicSecondOrderSystem system =
+            MakeModelSystem(model, omega_m, inner, 0, MatrixX());
+        const StateSystem sys = MakeStateSystem(system, options.deflate_rigid_modes);
+        return ComputeFloquetState(sys, options, inner);
+      };
+      r = AutoModalProjectionFloquet(modes, n, project, full, options, initial);
+    } else {
+      r = ModalProjectionFloquet(modes, n, project, options, initial);
+    }
     if (initial > 0) r.summary.counters["modes_priority"] = initial;
     return r;
   }
@@ -185,21 +197,55 @@ MeshDrivenBasis SelectMeshDrivenBasis(const SystemModel& model, double mesh_freq
     if (r.strain_names[c].rfind("mesh:", 0) == 0) mesh_columns.push_back(static_cast<int>(c));
   }
   std::vector<int> priority, rest;
+  std::vector<bool> wanted(m, false);
   for (int k = 0; k < m; ++k) {
     double mesh_share = 0.0;
     for (const int c : mesh_columns) {
       if (r.strain_fractions.rows() > k) mesh_share += r.strain_fractions(k, c);
     }
-    const bool wanted = r.frequencies_hz[k] <= cover || mesh_share >= kMeshStrainShare;
-    (wanted ? priority : rest).push_back(k);
+    wanted[k] = r.frequencies_hz[k] <= cover || mesh_share >= kMeshStrainShare;
+  }
+  // Decay over one period of the uncoupled mode, ρ_k = exp(−2π ζ_k f_k T) (ζ_k = φᵀC̄φ/(2ω_k),
+  // the mean system's): a mode left out contributes nothing to max|λ|, so every mode that decays
+  // no faster than the slowest-decaying wanted flexible mode joins the basis (an undamped mode
+  // anywhere: ρ = 1). Without it a dropped undamped mode would turn "stable, marginal" into
+  // "stable" with a max|λ| below 1.
+  const double period_s = static_cast<double>(OperatorPeriodMeshes(model)) / mesh_frequency_hz;
+  auto decay = [&](int k) {
+    const double zeta = r.modal_damping_ratios.size() > k ? r.modal_damping_ratios[k] : 0.0;
+    return std::exp(-2.0 * std::numbers::pi * zeta * r.frequencies_hz[k] * period_s);
+  };
+  double slowest = 0.0;
+  for (int k = 0; k < m; ++k) {
+    if (wanted[k] && r.frequencies_hz[k] > 0.0) slowest = std::max(slowest, decay(k));
+  }
+  for (int k = 0; k < m; ++k) {
+    if (!wanted[k] && r.frequencies_hz[k] > 0.0 && decay(k) >= slowest) wanted[k] = true;
+    (wanted[k] ? priority : rest).push_back(k);
   }
   MeshDrivenBasis out;
   out.num_priority = std::max(static_cast<int>(priority.size()), std::min(12, m));
   out.modes.resize(n, m);
+  out.frequencies_hz.resize(m);
   int col = 0;
-  for (const int k : priority) out.modes.col(col++) = r.shapes.col(k);
-  for (const int k : rest) out.modes.col(col++) = r.shapes.col(k);
+  for (const std::vector<int>* group : {&priority, &rest}) {
+    for (const int k : *group) {
+      out.frequencies_hz[col] = r.frequencies_hz[k];
+      out.modes.col(col++) = r.shapes.col(k);
+    }
+  }
   return out;
+}
+
+int NextBasisSize(int m, int num_dofs) {
+  return std::min(num_dofs, std::max(m + 1, static_cast<int>(std::ceil(1.5 * m))));
+}
+
+double MagnusWork(double f_max_hz, double period_s, int dofs) {
+  const double steps = std::max(static_cast<double>(kMinMagnusSteps),
+                                2.0 * 2.0 * std::numbers::pi * f_max_hz * period_s);
+  const double d = 2.0 * dofs;
+  return steps * d * d * d;
 }
 
 std::vector<UndampedMode> UndampedModes(const SystemModel& model) {
@@ -249,9 +295,46 @@ std::vector<UndampedMode> UndampedModes(const SystemModel& model) {
 }
 
 FloquetMethod SelectFloquetMethod(const SystemModel& model, const FloquetOptions& options) {
-  if (options.method != FloquetMethod::kAuto) return options.method;
-  if (model.num_dofs() >= options.modal_projection_min_dofs) return FloquetMethod::kModalProjection;
-  return HasPiecewiseConstantOperator(model) ? FloquetMethod::kExactSteps : FloquetMethod::kMagnus;
+  return SelectFloquetMethod(model, options, nullptr);
+}
+
+FloquetMethod SelectFloquetMethod(const SystemModel& model, const FloquetOptions& options,
+                                  MeshDrivenBasis* basis) {
+  const bool automatic_basis = options.num_modes == 0;
+  if (options.method != FloquetMethod::kAuto) {
+    if (options.method == FloquetMethod::kModalProjection && automatic_basis && basis != nullptr) {
+      *basis = SelectMeshDrivenBasis(model, options.mesh_frequency_hz);
+    }
+    return options.method;
+  }
+  const int n = model.num_dofs();
+  if (n >= options.modal_projection_min_dofs) {
+    if (automatic_basis && basis != nullptr) {
+      *basis = SelectMeshDrivenBasis(model, options.mesh_frequency_hz);
+    }
+    return FloquetMethod::kModalProjection;
+  }
+  // Piecewise-constant: the exact product (one expm per distinct step; no step count to choose).
+  if (HasPiecewiseConstantOperator(model)) return FloquetMethod::kExactSteps;
+  // Smooth coefficients: Magnus on the full system or on the mesh-driven modal basis, by cost
+  // (MagnusWork: steps ∝ the highest frequency kept, work ∝ steps × (2m)³). Only worth asking
+  // when the check basis ⌈2.25 m₀⌉ (m₀ ≥ min(12, n)) can be smaller than n.
+  const int m0_least = std::min(12, n);
+  if (NextBasisSize(NextBasisSize(m0_least, n), n) >= n) return FloquetMethod::kMagnus;
+  MeshDrivenBasis b = SelectMeshDrivenBasis(model, options.mesh_frequency_hz);
+  const int m = static_cast<int>(b.modes.cols());
+  const int m0 = std::min(b.num_priority, m), m1 = NextBasisSize(m0, n), m2 = NextBasisSize(m1, n);
+  if (m < n || m2 >= n) return FloquetMethod::kMagnus;
+  const double period_s =
+      static_cast<double>(OperatorPeriodMeshes(model)) / options.mesh_frequency_hz;
+  auto highest = [&](int cols) { return b.frequencies_hz.head(cols).maxCoeff(); };
+  const double full_work = MagnusWork(b.frequencies_hz.maxCoeff(), period_s, n);
+  const double projection_work = MagnusWork(highest(m0), period_s, m0) +
+                                 MagnusWork(highest(m1), period_s, m1) +
+                                 MagnusWork(highest(m2), period_s, m2);
+  if (!(kProjectionWorkMargin * projection_work < full_work)) return FloquetMethod::kMagnus;
+  if (basis != nullptr) *basis = std::move(b);
+  return FloquetMethod::kModalProjection;
 }
 
 }  // namespace internal
