@@ -20,13 +20,13 @@
 // max|λ| changes of 1e-7). The reported multipliers are the m₂ run's; the phases of its highest
 // modes are not covered by e.
 //
-// **Acceptance** (status success): e ≤ tolerance; or e ≤ kAutoProjectionAccuracy (1e-6) and
-// |1 − M₂| > e — the verdict read with the estimate is then the same for every value within it
-// (a warning says that the tolerance was not met by the projection and how to get the full
-// system). Otherwise the window moves up one level (m₀ ← m₁), and when the check basis would hold
-// all n modes the unprojected system is solved instead at the requested tolerance (`full`). The
-// inner runs use the error target 0.01·max(tolerance, 1e-6): two orders below what is accepted.
-// A failed inner run (status not success or NaN estimate) is returned as it is (undetermined).
+// **Acceptance** (status success): e ≤ tolerance; or e ≤ 1e-4 (kAutoProjectionMaxEstimate) and
+// |1 − M₂| > 10·e (kAutoVerdictSafety) — the verdict is then the same for every value within ten
+// estimates, and a warning says that the projection did not meet the tolerance and how to get the
+// full system. Otherwise the window moves up one level (m₀ ← m₁), and when the check basis would
+// hold all n modes the unprojected system is solved instead at the requested tolerance (`full`).
+// The inner runs use the error target 0.01·max(tolerance, 1e-6) on Φ. A failed inner run (status
+// not success or NaN estimate) is returned as it is (undetermined).
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -78,7 +78,8 @@ FloquetResult AutoModalProjectionFloquet(
     const double e = truncation + r2.summary.error_estimate;  // NaN stays NaN
     const bool ok = r0.summary.ok() && r1.summary.ok() && r2.summary.ok();
     const bool met = e <= options.tolerance;
-    const bool resolved = e <= kAutoProjectionAccuracy && std::abs(1.0 - M2) > e;
+    const bool resolved =
+        e <= kAutoProjectionMaxEstimate && kAutoVerdictSafety * e < std::abs(1.0 - M2);
     if (!ok || std::isnan(e) || met || resolved) {
       FloquetResult out = std::move(r2);
       if (ok && !std::isnan(e)) {

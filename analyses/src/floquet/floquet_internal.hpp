@@ -261,20 +261,23 @@ FloquetResult ModalProjectionFloquet(
     const std::function<PeriodicSecondOrderSystem(const MatrixX&)>& project,
     const FloquetOptions& options, int initial_modes = 0);
 
-/// The accuracy of max|λ| kAuto accepts from a modal projection whose estimate is above the
-/// tolerance, when the verdict does not depend on it (|1 − max|λ|| > estimate) [-]: the error
-/// target of the stability chart's screening and of the linear HB's verdicts; difference-based
-/// truncation estimates are trusted only when the changes between bases are this small.
+/// kAuto accepts a modal projection whose estimate e of max|λ| is above the tolerance when
+/// e ≤ kAutoProjectionMaxEstimate and |1 − max|λ_flex|| > kAutoVerdictSafety·e: the verdict is
+/// the same for every value within ten estimates. The cap: the difference-based truncation
+/// estimate (factor 4, modal_projection.cpp) was calibrated on changes of 1e-4 and below.
+inline constexpr double kAutoProjectionMaxEstimate = 1e-4;
+inline constexpr double kAutoVerdictSafety = 10.0;
+/// The inner (Magnus) error target of kAuto's projection runs is kAutoInnerToleranceFactor ·
+/// max(tolerance, kAutoProjectionAccuracy) on Φ [-]: 1e-8 for the CLI's 1e-10 and the charts'
+/// 1e-6, well below the truncation estimates (1e-7 … 1e-5 on builtin:geared-shafts).
 inline constexpr double kAutoProjectionAccuracy = 1e-6;
-/// The inner (Magnus/exact) error target of kAuto's projection runs, relative to
-/// max(tolerance, kAutoProjectionAccuracy) [-].
 inline constexpr double kAutoInnerToleranceFactor = 1e-2;
 
 /// @brief kAuto's modal projection (auto_projection.cpp): bases m, ⌈1.5m⌉, ⌈2.25m⌉ widened until
-/// the estimate of max|λ| (truncation: 4× the largest change of the flexible max|λ| between the
-/// bases; plus the inner method's) meets the tolerance, or is ≤ kAutoProjectionAccuracy and does
-/// not decide the verdict; `full()` (the unprojected system) when the check basis would hold all
-/// n modes. `modes`/`project` as for ModalProjectionFloquet.
+/// the estimate e of max|λ| (truncation: 4× the largest change of the flexible max|λ| between the
+/// bases; plus the inner method's) meets the tolerance, or e ≤ kAutoProjectionMaxEstimate and
+/// |1 − max|λ_flex|| > kAutoVerdictSafety·e; `full()` (the unprojected system) when the check basis
+/// would hold all n modes. `modes`/`project` as for ModalProjectionFloquet.
 FloquetResult AutoModalProjectionFloquet(
     const std::function<MatrixX(int)>& modes, int num_dofs,
     const std::function<PeriodicSecondOrderSystem(const MatrixX&)>& project,
