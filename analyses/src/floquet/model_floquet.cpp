@@ -375,8 +375,12 @@ FloquetMethod SelectFloquetMethod(const SystemModel& model, const FloquetOptions
   // Smooth coefficients: Magnus on the full system or on the mesh-driven modal basis, by cost
   // (MagnusWork: steps ∝ the highest frequency kept, work ∝ steps × (2m)³). Only worth asking
   // when the check basis ⌈2.25 m₀⌉ (m₀ ≥ min(12, n)) can be smaller than n.
+  // A user-sized basis (num_modes > 0) keeps the former rule below modal_projection_min_dofs:
+  // the full system (its fixed-size projection has no verdict-based acceptance).
   const int m0_least = std::min(12, n);
-  if (NextBasisSize(NextBasisSize(m0_least, n), n) >= n) return FloquetMethod::kMagnus;
+  if (!automatic_basis || NextBasisSize(NextBasisSize(m0_least, n), n) >= n) {
+    return FloquetMethod::kMagnus;
+  }
   MeshDrivenBasis b = SelectMeshDrivenBasis(model, options.mesh_frequency_hz);
   const int m = static_cast<int>(b.modes.cols());
   const int m0 = std::min(b.num_priority, m), m1 = NextBasisSize(m0, n), m2 = NextBasisSize(m1, n);
