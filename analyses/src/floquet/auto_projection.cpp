@@ -20,14 +20,14 @@
 // max|λ| changes of 1e-7). The reported multipliers are the m₂ run's; the phases of its highest
 // modes are not covered by e.
 //
-// **Acceptance** (status success): e ≤ tolerance; or e ≤ 1e-4 (kAutoProjectionMaxEstimate),
-// |1 − M₂| > 10·e (kAutoVerdictSafety) and the changes shrink (d₂ = |M₁ − M₂| ≤ d₁ = |M₀ − M₁|, or
-// d₂ below the inner estimate) — the verdict is then the same for every value within ten
-// estimates, and a warning says that the projection did not meet the tolerance and how to get the
-// full system. Otherwise the window moves up one level (m₀ ← m₁), and when the check basis would
-// hold all n modes the unprojected system is solved instead at the requested tolerance (`full`).
-// The inner runs use the error target 0.01·max(tolerance, 1e-6) on Φ. A failed inner run (status
-// not success or NaN estimate) is returned as it is (undetermined).
+// **Acceptance** (status success), only where the changes shrink (d₂ = |M₁ − M₂| ≤ d₁ =
+// |M₀ − M₁|, or d₂ below the inner estimate): e ≤ tolerance; or e ≤ 1e-4
+// (kAutoProjectionMaxEstimate) and |1 − M₂| > 10·e (kAutoVerdictSafety) — the verdict is then the
+// same for every value within ten estimates, and a warning says that the projection did not meet
+// the tolerance and how to get the full system. Otherwise the window moves up one level (m₀ ← m₁),
+// and when the check basis would hold all n modes the unprojected system is solved instead at the
+// requested tolerance (`full`). The inner runs use the error target 0.01·max(tolerance, 1e-6) on Φ.
+// A failed inner run (status not success or NaN estimate) is returned as it is (undetermined).
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -85,8 +85,9 @@ FloquetResult AutoModalProjectionFloquet(
     // 5.7e-7 then 1.2e-6, true error of M₂ 4.9e-6 > e = 4.7e-6).
     const bool shrinking = d2 <= d1 || d2 <= r2.summary.error_estimate;
     const bool resolved =
-        shrinking && e <= kAutoProjectionMaxEstimate && kAutoVerdictSafety * e < std::abs(1.0 - M2);
-    if (!ok || std::isnan(e) || met || resolved) {
+        e <= kAutoProjectionMaxEstimate && kAutoVerdictSafety * e < std::abs(1.0 - M2);
+    const bool accepted = shrinking && (met || resolved);
+    if (!ok || std::isnan(e) || accepted) {
       FloquetResult out = std::move(r2);
       if (ok && !std::isnan(e)) {
         out.summary.error_estimate = e;
@@ -104,7 +105,7 @@ FloquetResult AutoModalProjectionFloquet(
       out.summary.counters["modes_check"] = m2;
       out.summary.counters["projection_runs"] = runs;
       out.method_used = FloquetMethod::kModalProjection;
-      if (ok && !met && resolved) {
+      if (ok && accepted && !met) {
         out.summary.warnings.push_back(
             "kAuto modal projection on " + std::to_string(m2) + " of " + std::to_string(num_dofs) +
             " modes: max|λ| is known to " + FormatEstimate(e) + " (basis truncation " +
