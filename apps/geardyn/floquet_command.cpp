@@ -172,7 +172,9 @@ Command AddFloquetCommand(CLI::App& app) {
   cmd->add_option(
          "--method", opts->method,
          "auto, exact_steps, magnus, ode_stepper, hill, modal_projection or arpack_monodromy "
-         "(default auto)")
+         "(default auto: exact_steps for piecewise-constant stiffness, else magnus on the full "
+         "system or modal_projection on the mesh-driven modes, whichever costs less; the "
+         "projection is kept only when its max|λ| estimate cannot change the verdict)")
       ->check(CLI::IsMember(names));
   cmd->add_option("--tolerance", opts->tolerance,
                   "error target on the multipliers (default 1e-10; not used by exact_steps)")

@@ -71,17 +71,37 @@ StateSystem MakeStateSystem(const PeriodicSecondOrderSystem& system, bool deflat
 SystemSteps OperatorSteps(const SystemModel& model, std::int64_t operator_period);
 
 /// @brief The automatic kModalProjection basis (model_floquet.cpp): the modes of the mean system
-/// below 2.25 f_m and those with ≥ 5 % of their strain energy in a mesh, in frequency order,
-/// then the others in frequency order (the enlarged bases of the error estimate).
+/// below 2.25 f_m, those with ≥ 5 % of their strain energy in a mesh, and those that decay over
+/// one period no faster than the slowest-decaying of these (an undamped mode anywhere), in
+/// frequency order, then the others in frequency order (the enlarged bases of the estimate).
 struct MeshDrivenBasis {
-  MatrixX modes;         ///< (n × m) M-orthonormal, priority modes first
-  int num_priority = 0;  ///< the first basis size m₀ (at least min(12, m))
+  MatrixX modes;           ///< (n × m) M-orthonormal, priority modes first
+  VectorX frequencies_hz;  ///< (m) natural frequency of each column of `modes` [Hz]
+  int num_priority = 0;    ///< the first basis size m₀ (at least min(12, m))
 };
 inline constexpr int kMaxBasisModes = 1500;        ///< modes computed for the selection
 inline constexpr double kBasisResonanceOrder = 3;  ///< k_max of f_m = 2 f_p / k
 inline constexpr double kBasisFrequencyMargin = 1.5;
 inline constexpr double kMeshStrainShare = 0.05;
 MeshDrivenBasis SelectMeshDrivenBasis(const SystemModel& model, double mesh_frequency_hz);
+
+/// @brief The next basis size of the modal projection's estimate: ⌈1.5m⌉ (at least m + 1), at
+/// most n.
+int NextBasisSize(int m, int num_dofs);
+
+/// @brief kAuto's cost model (model_floquet.cpp): the work of one Magnus run on `dofs` DOFs
+/// whose highest natural frequency is f_max [Hz] over the period T [s]: steps × (2·dofs)³ with
+/// steps = max(8, 2·2π f_max T) (h‖A‖ ≤ 1, ‖A‖ ≈ 2ω_max in the scaled modal state) [flop-like
+/// units; only ratios are used].
+double MagnusWork(double f_max_hz, double period_s, int dofs);
+/// kAuto projects when the three bases of the estimate cost less than 1/kProjectionWorkMargin of
+/// the full Magnus run (room for one widening of the basis, ≈ 3.4× the work, and the modes).
+inline constexpr double kProjectionWorkMargin = 4.0;
+
+/// @brief kAuto's method for `model` (see floquet.hpp); when it is kModalProjection and `basis`
+/// is not null, *basis receives the automatic basis (computed for the decision anyway).
+FloquetMethod SelectFloquetMethod(const SystemModel& model, const FloquetOptions& options,
+                                  MeshDrivenBasis* basis);
 
 /// At most this many modes are searched for UndampedModes [-].
 inline constexpr int kMaxUndampedModesListed = 60;
@@ -246,6 +266,28 @@ FloquetResult ModalProjectionFloquet(
     const std::function<MatrixX(int)>& modes, int num_dofs,
     const std::function<PeriodicSecondOrderSystem(const MatrixX&)>& project,
     const FloquetOptions& options, int initial_modes = 0);
+
+/// kAuto accepts a modal projection whose estimate e of max|λ| is above the tolerance when
+/// e ≤ kAutoProjectionMaxEstimate and |1 − max|λ_flex|| > kAutoVerdictSafety·e: the verdict is
+/// the same for every value within ten estimates. The cap: the difference-based truncation
+/// estimate (factor 4, modal_projection.cpp) was calibrated on changes of 1e-4 and below.
+inline constexpr double kAutoProjectionMaxEstimate = 1e-4;
+inline constexpr double kAutoVerdictSafety = 10.0;
+/// The inner (Magnus) error target of kAuto's projection runs is kAutoInnerToleranceFactor ·
+/// max(tolerance, kAutoProjectionAccuracy) on Φ [-]: 1e-8 for the CLI's 1e-10 and the charts'
+/// 1e-6, well below the truncation estimates (1e-7 … 1e-5 on builtin:geared-shafts).
+inline constexpr double kAutoProjectionAccuracy = 1e-6;
+inline constexpr double kAutoInnerToleranceFactor = 1e-2;
+
+/// @brief kAuto's modal projection (auto_projection.cpp): bases m, ⌈1.5m⌉, ⌈2.25m⌉ widened until
+/// the estimate e of max|λ| (truncation: 4× the largest change of the flexible max|λ| between the
+/// bases; plus the inner method's) meets the tolerance, or e ≤ kAutoProjectionMaxEstimate and
+/// |1 − max|λ_flex|| > kAutoVerdictSafety·e; `full()` (the unprojected system) when the check basis
+/// would hold all n modes. `modes`/`project` as for ModalProjectionFloquet.
+FloquetResult AutoModalProjectionFloquet(
+    const std::function<MatrixX(int)>& modes, int num_dofs,
+    const std::function<PeriodicSecondOrderSystem(const MatrixX&)>& project,
+    const std::function<FloquetResult()>& full, const FloquetOptions& options, int initial_modes);
 
 /// `value` with 3 significant digits ("1.23e-09", "inf", "nan") for messages (std::to_string
 /// prints 1e-9 as "0.000000").

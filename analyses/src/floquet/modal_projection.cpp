@@ -107,9 +107,7 @@ FloquetResult ModalProjectionFloquet(
     r.summary.counters["inner_method"] = static_cast<long>(method);
     return r;
   };
-  auto next = [num_dofs](int m) {
-    return std::min(num_dofs, std::max(m + 1, static_cast<int>(std::ceil(1.5 * m))));
-  };
+  auto next = [num_dofs](int m) { return NextBasisSize(m, num_dofs); };
   int m0 = options.num_modes > 0 ? std::min(options.num_modes, num_dofs)
            : initial_modes > 0   ? std::min(initial_modes, num_dofs)
                                  : std::min(12, num_dofs);

@@ -45,13 +45,18 @@ TEST(ModalBasisTest, AutoFindsTheMeshModeTongueOfTheFullExactPath) {
   ASSERT_GE(model.num_dofs(), 200);
   const double f_mesh_mode = MeshModeHz(model);
   // A small chart across the principal tongue f_m = 2 f_p (its width ≈ ±Δk/(2k̄) = ±25 %·f_m/2).
-  int unstable_exact = 0, agree = 0, points = 0;
+  int unstable_exact = 0, agree = 0, points = 0, projected = 0;
   for (const double ratio : {1.5, 1.7, 1.85, 1.95, 2.0, 2.05, 2.15, 2.3, 2.5}) {
     const double hz = ratio * f_mesh_mode;
     SCOPED_TRACE("f_m = " + std::to_string(hz) + " Hz (" + std::to_string(ratio) + " f_p)");
     const FloquetResult full = RunFloquet(model, FloquetMethod::kExactSteps, hz);
     const FloquetResult automatic = RunFloquet(model, FloquetMethod::kAuto, hz);
-    ASSERT_EQ(automatic.method_used, FloquetMethod::kModalProjection);
+    // kAuto projects, or solves the full system when the projection's estimate of max|λ| cannot
+    // settle the verdict (inside the tongue, docs/design.md "Floquet kAuto by cost").
+    ASSERT_TRUE(automatic.method_used == FloquetMethod::kModalProjection ||
+                automatic.method_used == FloquetMethod::kExactSteps)
+        << ToString(automatic.method_used);
+    projected += automatic.method_used == FloquetMethod::kModalProjection;
     ASSERT_NE(full.verdict, FloquetVerdict::kUndetermined) << full.summary.message;
     EXPECT_NE(automatic.verdict, FloquetVerdict::kUndetermined) << automatic.summary.message;
     EXPECT_EQ(automatic.verdict, full.verdict)
@@ -65,6 +70,7 @@ TEST(ModalBasisTest, AutoFindsTheMeshModeTongueOfTheFullExactPath) {
     ++points;
   }
   EXPECT_GE(unstable_exact, 2);  // the chart does cross the tongue
+  EXPECT_GE(projected, 5);       // outside the tongue the projection answers
   EXPECT_EQ(agree, points);
 }
 

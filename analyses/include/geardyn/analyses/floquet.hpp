@@ -23,10 +23,20 @@
 // clang-format on
 ///
 /// **kAuto** (internal::SelectFloquetMethod, per DOF block): n ≥ modal_projection_min_dofs →
-/// kModalProjection (basis: the modes below 2.25 f_m and those with ≥ 5 % mesh strain energy
-/// first, see docs/design.md "Floquet verdicts and step counts"); piecewise-constant →
-/// kExactSteps; otherwise kMagnus (first step count ⌈T·max‖A‖₁⌉, h‖A‖ ≤ 1). kArpackMonodromy is
-/// never chosen automatically: it returns only the arpack_nev largest-|λ| multipliers. Measured on
+/// kModalProjection; piecewise-constant → kExactSteps; smooth coefficients → by cost, Magnus on
+/// the full system or on the mesh-driven modal basis (the modes below 2.25 f_m, those with ≥ 5 %
+/// mesh strain energy, and those decaying no faster than these; docs/design.md "Floquet kAuto by
+/// cost"): the work of a Magnus run is taken as ω_max T · (2m)³ (ω_max the highest natural
+/// frequency kept), and the projection is chosen when its three bases cost less than a quarter
+/// of the full run. kAuto's projection reports an estimate of max|λ| (the basis truncation, from
+/// the change of max|λ| over the three bases, plus the inner Magnus estimate) and accepts it when
+/// it meets the tolerance, or when it is ≤ 1e-4, |1 − max|λ|| exceeds ten estimates and the
+/// changes between bases shrink (a warning then says so); otherwise it widens the basis, and
+/// solves the full system when the basis would need every mode. builtin:geared-shafts (108
+/// DOFs): 193 s → 2.1 s CPU, same verdict
+/// (docs/benchmarks.md "Floquet kAuto by cost"). kArpackMonodromy is never chosen
+/// automatically: it returns only the arpack_nev largest-|λ| multipliers and forms the same
+/// full-size step exponentials as one Magnus run (26 s on the geared shafts). Measured on
 /// the 204-DOF geared shafts (docs/benchmarks.md "Floquet"): at the accuracy a modal projection
 /// reaches (1e-4 … 1e-5) the projection is 13–23× faster; ARPACK gives the 6 dominant multipliers
 /// to 2e-10 in 0.28 s, 2.5× faster than the full exact product (both spend most of it in the dense
@@ -143,7 +153,8 @@ struct FloquetOptions {
   int arpack_ncv = 0;
   /// kArpackMonodromy: maximum number of implicit restarts (ARPACK iparam[2]), 1 … 100 000 [-].
   int arpack_max_iterations = 1000;
-  /// kAuto: systems with at least this many DOFs (after the block split) use kModalProjection.
+  /// kAuto: systems with at least this many DOFs (after the block split) use kModalProjection
+  /// (below it, smooth systems choose by cost, see the @file).
   int modal_projection_min_dofs = 200;
   /// Analyse the decoupled DOF blocks (SystemModel::blocks()) separately (exact: they do not
   /// couple) and merge their multipliers.
@@ -201,8 +212,9 @@ FloquetResult ComputeFloquet(const SystemModel& model, const FloquetOptions& opt
 namespace internal {
 /// @brief The method ComputeFloquet runs on `model` (never kAuto; kAuto: n ≥
 /// options.modal_projection_min_dofs → kModalProjection; piecewise-constant K, C (constant
-/// included: one interval, Φ = expm(A T)) → kExactSteps; otherwise kMagnus). With
-/// options.split_blocks it is applied to every block separately.
+/// included: one interval, Φ = expm(A T)) → kExactSteps; otherwise kModalProjection when its
+/// estimated Magnus work is below a quarter of the full system's, else kMagnus; see the @file).
+/// With options.split_blocks it is applied to every block separately.
 FloquetMethod SelectFloquetMethod(const SystemModel& model, const FloquetOptions& options);
 }  // namespace internal
 
