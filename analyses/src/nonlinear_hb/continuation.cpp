@@ -50,6 +50,19 @@ constexpr double kFallbackTangentOmega = 0.2;
 /// undamped one (A ∝ 1/δ) doubles within 10⁻³ once it is within 2·10⁻³ of the resonance.
 constexpr double kUndampedGrowth = 2.0;
 constexpr double kUndampedBand = 1e-3;
+/// Unbounded branch of a damped problem (issue 13: a two-flank branch of a clearance law, which
+/// at amplitudes far above the clearance is homogeneous of degree one, so its amplitude grows as
+/// 1/|Ω* − Ω| towards the Ω* where the large-amplitude linear system has a multiplier 1): the
+/// trace stops once ‖x‖ has grown kUnboundedGrowth-fold since the smallest ‖x‖ of the branch (the
+/// points since the last fold) and 1/‖x‖ is linear in Ω — the asymptote Ω* extrapolated from the
+/// points at ‖x‖/4 → ‖x‖/2 and from ‖x‖/2 → ‖x‖ agree within kUnboundedConsistency of the
+/// remaining distance |Ω* − Ω| — with Ω* within kUnboundedBand·|Ω|. A damped forced resonance
+/// (ζ) reads as 1/δ only while δ ≫ ζ: 1/‖x‖ bends within a few ζ of it, so the two
+/// extrapolations disagree there unless ζ ≲ kUnboundedBand/3, and the growth needs δ to shrink
+/// 32-fold along one branch.
+constexpr double kUnboundedGrowth = 32.0;
+constexpr double kUnboundedConsistency = 0.05;
+constexpr double kUnboundedBand = 0.02;
 /// Two located folds of the same kind are the same fold when their Ω agree within kSameFold
 /// (relative; above the fold tolerance and the sampled AFT's repeatability, ~1e-6 on the rig,
 /// far below the distance of distinct folds) and their RMS within kSameFoldRms.
@@ -63,6 +76,53 @@ std::string OmegaText(const NhbContinuationOptions& c, double omega) {
   std::ostringstream s;
   s << std::setprecision(10) << "Omega = " << omega;
   return s.str();
+}
+
+struct UnboundedBranch {
+  bool found = false;
+  double omega = 0.0;   ///< extrapolated asymptote Ω*
+  double growth = 0.0;  ///< ‖x‖ growth over the points used
+};
+
+/// The test of kUnboundedGrowth on the (Ω, ‖x‖) of the current branch (last = newest point).
+UnboundedBranch DetectUnboundedBranch(const std::vector<std::array<double, 2>>& pts) {
+  UnboundedBranch out;
+  if (pts.size() < 3) return out;
+  const auto& p3 = pts.back();
+  double smallest = p3[1];
+  for (const auto& p : pts) smallest = std::min(smallest, p[1]);
+  if (!(p3[1] >= kUnboundedGrowth * smallest)) return out;
+  // The newest points at or below ‖x‖/2 and ‖x‖/4.
+  const std::array<double, 2>*p2 = nullptr, *p1 = nullptr;
+  for (auto it = pts.rbegin(); it != pts.rend(); ++it) {
+    if (p2 == nullptr && (*it)[1] <= 0.5 * p3[1]) p2 = &*it;
+    if (p2 != nullptr && (*it)[1] <= 0.25 * p3[1]) {
+      p1 = &*it;
+      break;
+    }
+  }
+  if (p1 == nullptr || p2 == nullptr) return out;
+  // Ω monotone over the three (no fold in between, but a kink could reverse Ω).
+  if (!((p1->at(0) < p2->at(0) && p2->at(0) < p3[0]) ||
+        (p1->at(0) > p2->at(0) && p2->at(0) > p3[0]))) {
+    return out;
+  }
+  // Zero of the line through (Ω_a, 1/‖x_a‖), (Ω_b, 1/‖x_b‖).
+  auto zero = [](const std::array<double, 2>& a, const std::array<double, 2>& b) {
+    const double ra = 1.0 / a[1], rb = 1.0 / b[1];
+    return b[0] - rb * (b[0] - a[0]) / (rb - ra);
+  };
+  const double w12 = zero(*p1, *p2), w23 = zero(*p2, p3);
+  const double remaining = std::abs(w23 - p3[0]);
+  if (!std::isfinite(w12) || !std::isfinite(w23) || (w23 - p3[0]) * (p3[0] - p2->at(0)) <= 0.0 ||
+      std::abs(w12 - w23) > kUnboundedConsistency * remaining ||
+      remaining > kUnboundedBand * std::abs(p3[0])) {
+    return out;
+  }
+  out.found = true;
+  out.omega = w23;
+  out.growth = p3[1] / p1->at(1);
+  return out;
 }
 
 NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options,
@@ -194,6 +254,9 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   // Undamped-resonance watch: Ω and ‖x‖ where the current narrow frequency band began.
   double band_omega = omega;
   double band_norm = x.norm();
+  // Unbounded-branch watch: (Ω, ‖x‖) of the points since the last fold.
+  const bool damped = !problem.damping.isZero(0.0);
+  std::vector<std::array<double, 2>> branch_norms{{omega, x.norm()}};
   while (static_cast<int>(curve.points.size()) < c.max_points) {
     // The step taken: ds, capped so that the predicted |ΔΩ| ≤ max_omega_step.
     double step = ds;
@@ -226,6 +289,7 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
     int it = 0;
     double res = 0.0;
     double previous_correction = 0.0;
+    double tol_it = tol;
     bool assembled = false;  // B holds the bordered matrix at (xc, oc)
     for (; it <= c.max_corrector_iterations; ++it) {
       if (smooth) {
@@ -236,7 +300,11 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
       assembled = !smooth;
       res = R.lpNorm<Eigen::Infinity>();
       if (!std::isfinite(res)) break;
-      if (res <= tol) {
+      // Relative to the residual's largest term too: on a branch growing without bound (issue
+      // 13: the spur pair's two-flank branch at 260 µm carries 1.6e5 N in N_k against a 1.4e3 N
+      // excitation) the round-off of R exceeds the excitation-scaled tolerance.
+      tol_it = std::max(tol, tol_scale * solver.LastLawForceNorm());
+      if (res <= tol_it) {
         converged = true;
         break;
       }
@@ -266,7 +334,7 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
       // converged once the residual is small. x and Ω each against their own size: Ω of a gear
       // system is ~1e4 rad/s while x is ~1e-5 m, and one absolute bound never held for both.
       if (z.head(m).lpNorm<Eigen::Infinity>() <= 1e-13 * (1.0 + xc.lpNorm<Eigen::Infinity>()) &&
-          std::abs(z[m]) <= 1e-13 * (1.0 + std::abs(oc)) && res <= 1e3 * tol) {
+          std::abs(z[m]) <= 1e-13 * (1.0 + std::abs(oc)) && res <= 1e3 * tol_it) {
         solver.Evaluate(xc, oc, &R, nullptr, nullptr);
         assembled = false;
         res = R.lpNorm<Eigen::Infinity>();
@@ -469,6 +537,23 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
       const double norm = x.norm();
       const bool fold = curve.points.size() >= 2 &&
                         (curve.points[curve.points.size() - 2].tangent_omega > 0) != (t[m] > 0);
+      if (fold) branch_norms.clear();
+      branch_norms.push_back({omega, norm});
+      if (damped) {
+        const UnboundedBranch u = DetectUnboundedBranch(branch_norms);
+        if (u.found) {
+          std::ostringstream msg;
+          msg << std::setprecision(6) << "the branch grows without bound towards "
+              << OmegaText(c, u.omega) << " (extrapolated from 1/‖x‖, linear in the frequency "
+              << "over the last " << std::setprecision(3) << u.growth << "-fold growth): its "
+              << "amplitude is unbounded there, so the trace of this branch stops at "
+              << OmegaText(c, omega);
+          curve.summary.warnings.push_back(msg.str());
+          curve.unbounded_branch_omega = u.omega;
+          curve.unbounded_branch_stop = omega;
+          break;
+        }
+      }
       if (fold || std::abs(omega - band_omega) > kUndampedBand * std::abs(band_omega)) {
         band_omega = omega;
         band_norm = norm;

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "geardyn/analyses/floquet.hpp"
 #include "geardyn/analyses/modal.hpp"
 #include "geardyn/analyses/system_nonlinear_hb.hpp"
 #include "geardyn/common/check.hpp"
@@ -54,6 +55,41 @@ std::string NameResonantMode(const SystemModel& model, double mesh_hz, int perio
   s << ", met by harmonic " << best_j << " of the " << (period_multiple > 1 ? "base" : "mesh")
     << " frequency (" << best_j * mesh_hz / period_multiple << " Hz; the nonlinear branch's "
     << "frequency differs from the mean-stiffness mode's by the clearance nonlinearity)";
+  return s.str();
+}
+
+/// Why a damped branch grows without bound (NhbCurve::unbounded_branch_omega), checked on the
+/// model: at amplitudes far above the backlash the clearance law acts on both flanks as the
+/// linear time-varying mesh (every slice loaded), whose response is unbounded where that system
+/// is parametrically unstable. The Floquet verdict of the linear model on kScan frequencies from
+/// the trace's stop to 3 % past the asymptote gives the onset (the first unstable one) or says
+/// none was found.
+std::string ExplainUnboundedBranch(const SystemModel& model, double stop_hz, double asymptote_hz) {
+  constexpr int kScan = 16;
+  const double lo = std::min(stop_hz, asymptote_hz);
+  const double hi = std::max(stop_hz, asymptote_hz) * 1.03;
+  std::ostringstream s;
+  s << std::setprecision(6);
+  FloquetOptions fo;
+  fo.tolerance = 1e-8;
+  double previous = lo;
+  for (int i = 0; i <= kScan; ++i) {
+    const double f = lo + (hi - lo) * i / kScan;
+    fo.mesh_frequency_hz = f;
+    const FloquetResult r = ComputeFloquet(model, fo);
+    if (r.verdict == FloquetVerdict::kUnstable) {
+      s << "the linear time-varying model (every slice loaded), which the two-flank mesh "
+        << "approaches at amplitudes far above the backlash, is parametrically unstable from "
+        << "between " << previous << " and " << f
+        << " Hz (Floquet, max |lambda| = " << r.max_abs_multiplier << " at " << f
+        << " Hz): physics, not a numerical failure";
+      return s.str();
+    }
+    previous = f;
+  }
+  s << "the linear time-varying model (every slice loaded) is not found parametrically unstable "
+    << "between " << lo << " and " << hi << " Hz (Floquet on " << kScan + 1
+    << " frequencies): cause not identified";
   return s.str();
 }
 
@@ -114,6 +150,14 @@ SystemNhbCurve TraceSystemNonlinearHb(const SystemModel& model, const SystemNhbO
   if (curve.undamped_resonance_omega > 0.0) {
     out.summary.message += "; " + NameResonantMode(model, curve.undamped_resonance_omega / kTwoPi,
                                                    hb.period_multiple, curve.harmonics_used);
+  }
+  if (curve.unbounded_branch_omega > 0.0) {
+    out.unbounded_branch_hz = curve.unbounded_branch_omega / kTwoPi;
+    const std::string why = ExplainUnboundedBranch(model, curve.unbounded_branch_stop / kTwoPi,
+                                                   out.unbounded_branch_hz);
+    for (std::string& w : out.summary.warnings) {
+      if (w.rfind("the branch grows without bound", 0) == 0) w += "; " + why;
+    }
   }
   for (const std::string& w : sp.warnings) out.summary.warnings.push_back(w);
   internal::SystemPointDescriber describer(model, sp, hb, options.compute_element_forces,

@@ -343,6 +343,12 @@ struct NhbCurve {
   /// Ω where the trace stopped on a vertical branch (an undamped resonance: the response
   /// doubled within 0.1 % of Ω without a fold; summary.status kNotConverged); 0 when none.
   double undamped_resonance_omega = 0.0;
+  /// A damped branch growing without bound (amplitude ∝ 1/|Ω* − Ω|, e.g. a two-flank branch of
+  /// a clearance law towards a parametric instability of the large-amplitude linear system):
+  /// the extrapolated asymptote Ω* and the Ω where its trace stopped (summary.warnings says so;
+  /// the status stays success: the branch is traced as far as it exists); 0 when none.
+  double unbounded_branch_omega = 0.0;
+  double unbounded_branch_stop = 0.0;
   Summary summary;  ///< error_estimate: max point error_estimate; counters: points, newton, folds.
 };
 
@@ -379,6 +385,10 @@ class NhbSolver {
   /// condensed forces [N] (a gear system's f₀ is in torques on the flexible coordinates, but its
   /// residual is in mesh forces: F̃_0 carries the mean mesh force).
   double ResidualTolerance(double omega);
+  /// max_k ‖N_k‖∞ of the law's force harmonics at the x of the last Evaluate [force units]
+  /// (0 before any): the size of the residual's largest term on a large-amplitude branch, where
+  /// ResidualTolerance (set by the excitation) falls below the round-off of R.
+  double LastLawForceNorm() const;
   /// Fills omega, harmonics, mean, rms, peak_to_peak, max, min, error_estimate of `point`.
   void Describe(const VectorX& x, double omega, NhbPoint& point);
   /// Floquet multiplier of largest modulus (method per options).

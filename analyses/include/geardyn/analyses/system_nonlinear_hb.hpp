@@ -141,7 +141,10 @@ struct SystemNhbCurve {
   std::vector<SystemNhbJump> jumps;
   int harmonics_used = 0;   ///< H
   int period_multiple = 1;  ///< p (base frequency ω_m/p)
-  Summary summary;          ///< engine summary plus the problem's warnings
+  /// A branch growing without bound towards this mesh frequency [Hz] (NhbCurve::
+  /// unbounded_branch_omega; a warning gives the linear model's Floquet onset); 0 when none.
+  double unbounded_branch_hz = 0.0;
+  Summary summary;  ///< engine summary plus the problem's warnings
 };
 
 /// @brief Traces the steady-state response over [start_hz, end_hz] (see the @file).
