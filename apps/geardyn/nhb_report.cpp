@@ -72,6 +72,7 @@ json MakeNhbReport(const std::string& scene_source, const NhbRunInfo& info,
     json p;
     p["mesh_frequency_hz"] = Finite(r.mesh_frequency_hz);
     p["branch"] = r.point.branch;
+    p["segment"] = r.point.segment;
     // true / false, null when undetermined (a non-finite multiplier or a failed point) or not
     // computed (--stability none: no verdict is printed for a computation that did not run).
     const bool computed = info.stability != "none";
@@ -267,11 +268,12 @@ std::string RenderNhbPlot(const SystemNhbCurve& curve, const std::string& title,
     bool have_previous = false;
     bool labelled_stable = false, labelled_unstable = false;
     double previous_x = 0.0, previous_y = 0.0;
+    int previous_segment = 0;
     for (const SystemNhbPoint& r : curve.points) {
-      if (!PointOk(r)) {
-        have_previous = false;
-        continue;
-      }
+      // A branch-search segment is not joined to the point before it.
+      if (!PointOk(r) || r.point.segment != previous_segment) have_previous = false;
+      previous_segment = r.point.segment;
+      if (!PointOk(r)) continue;
       const double x = r.mesh_frequency_hz, y = 1e6 * r.meshes.front().rms_dte;
       // Undetermined: dashed. Not computed (--stability none): solid, without a legend.
       const bool stable = !stability_computed || r.point.stable == FloquetVerdict::kStable;

@@ -28,6 +28,7 @@
 
 #include "geardyn/analyses/nonlinear_hb.hpp"
 #include "geardyn/common/check.hpp"
+#include "nonlinear_hb/branch_search.hpp"
 #include "nonlinear_hb/folds.hpp"
 
 namespace geardyn {
@@ -125,8 +126,12 @@ UnboundedBranch DetectUnboundedBranch(const std::vector<std::array<double, 2>>& 
   return out;
 }
 
+}  // namespace
+
+namespace internal {
+
 NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options,
-                            const NhbContinuationOptions& c, int H) {
+                            const NhbContinuationOptions& c, int H, BranchStart* from) {
   NhbCurve curve;
   curve.harmonics_used = H;
   NhbSolver solver(problem, options, H);
@@ -139,8 +144,9 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   const bool smooth = solver.exact_integration();
   (void)n;
   const double direction = c.omega_end > c.omega_start ? 1.0 : -1.0;
-  double omega = c.omega_start;
-  VectorX x = solver.ContactGuess(omega);
+  // A branch-search trace starts from its solution and stops where it leaves the range.
+  double omega = from ? from->omega : c.omega_start;
+  VectorX x = from ? from->x : solver.ContactGuess(omega);
   Status status;
   double rn = 0.0;
   long newton = solver.Newton(x, omega, &status, &rn);
@@ -497,6 +503,10 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
                  std::abs(f.omega - loc.omega) <= kSameFold * std::abs(loc.omega) &&
                  std::abs(f.rms - at_fold.rms[0]) <= kSameFoldRms * std::abs(f.rms) && left_fold(f);
         });
+        if (seen != located.end() && from != nullptr) {
+          from->closed = true;  // an isola, traced once around: the result, not a failure
+          break;
+        }
         if (seen != located.end()) {
           std::ostringstream msg;
           msg << "the branch closed on itself: it came back to the fold at "
@@ -524,6 +534,7 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
     x = xc;
     omega = oc;
     t = t_new;
+    if (from != nullptr && (omega - c.omega_start) * direction < 0) break;  // left the range
     if ((omega - c.omega_start) * direction < -0.5 * std::abs(c.omega_end - c.omega_start)) {
       curve.summary.warnings.push_back(
           "the curve turned back past the start of the range (at " + OmegaText(c, omega) +
@@ -549,8 +560,7 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
               << "amplitude is unbounded there, so the trace of this branch stops at "
               << OmegaText(c, omega);
           curve.summary.warnings.push_back(msg.str());
-          curve.unbounded_branch_omega = u.omega;
-          curve.unbounded_branch_stop = omega;
+          curve.unbounded_branches.push_back({u.omega, omega});
           break;
         }
       }
@@ -634,7 +644,7 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   return curve;
 }
 
-}  // namespace
+}  // namespace internal
 
 NhbCurve TraceNonlinearHarmonicBalance(const NhbProblem& problem, const NhbOptions& options,
                                        const NhbContinuationOptions& continuation) {
@@ -644,17 +654,22 @@ NhbCurve TraceNonlinearHarmonicBalance(const NhbProblem& problem, const NhbOptio
   GEARDYN_THROW_UNLESS(options.IsValid(&why), "nonlinear HB options: " << why);
   GEARDYN_THROW_UNLESS(continuation.IsValid(&why), "nonlinear HB continuation: " << why);
   NhbCurve curve;
+  using internal::TraceWithHarmonics;
   if (options.harmonics > 0) {
-    curve = TraceWithHarmonics(problem, options, continuation, options.harmonics);
+    curve = TraceWithHarmonics(problem, options, continuation, options.harmonics, nullptr);
   } else {
     for (int H = 8; H <= options.max_harmonics; H *= 2) {
-      curve = TraceWithHarmonics(problem, options, continuation, H);
+      curve = TraceWithHarmonics(problem, options, continuation, H, nullptr);
       if (!curve.summary.ok() || curve.summary.error_estimate <= options.harmonic_tolerance) break;
     }
     if (curve.summary.ok() && curve.summary.error_estimate > options.harmonic_tolerance) {
       curve.summary.status = Status::kToleranceNotMet;
       curve.summary.message = "top-harmonic energy above harmonic_tolerance at max_harmonics";
     }
+  }
+  if (continuation.branch_search > 0 && !curve.points.empty() &&
+      curve.summary.status != Status::kNotConverged) {
+    internal::SearchBranches(problem, options, continuation, curve);
   }
   curve.summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

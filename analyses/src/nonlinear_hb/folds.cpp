@@ -93,6 +93,12 @@ void FindFoldsAndJumps(NhbCurve& curve, const std::vector<double>& steps, double
     }
     pts[i].branch = branch;
   }
+  FindJumps(curve);
+}
+
+void FindJumps(NhbCurve& curve) {
+  auto& pts = curve.points;
+  curve.jumps.clear();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const NhbFold& fold : curve.folds) {
     // Both branches meeting at the fold lie on the same side in Ω, the side a sweep comes

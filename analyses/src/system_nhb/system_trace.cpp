@@ -7,6 +7,7 @@
 #include <limits>
 #include <numbers>
 #include <sstream>
+#include <vector>
 
 #include "geardyn/analyses/floquet.hpp"
 #include "geardyn/analyses/modal.hpp"
@@ -58,38 +59,51 @@ std::string NameResonantMode(const SystemModel& model, double mesh_hz, int perio
   return s.str();
 }
 
-/// Why a damped branch grows without bound (NhbCurve::unbounded_branch_omega), checked on the
+/// Why a damped branch grows without bound (NhbCurve::unbounded_branches), checked on the
 /// model: at amplitudes far above the backlash the clearance law acts on both flanks as the
-/// linear time-varying mesh (every slice loaded), whose response is unbounded where that system
-/// is parametrically unstable. The Floquet verdict of the linear model on kScan frequencies from
-/// the trace's stop to 3 % past the asymptote gives the onset (the first unstable one) or says
-/// none was found.
-std::string ExplainUnboundedBranch(const SystemModel& model, double stop_hz, double asymptote_hz) {
-  constexpr int kScan = 16;
-  const double lo = std::min(stop_hz, asymptote_hz);
-  const double hi = std::max(stop_hz, asymptote_hz) * 1.03;
-  std::ostringstream s;
-  s << std::setprecision(6);
+/// linear time-varying mesh (every slice loaded), whose periodic response is unbounded at the
+/// edges of its parametric instability regions. The Floquet verdict of the linear model on
+/// 2·kScan + 1 frequencies within ±kSpan of the asymptote gives the stability edge nearest to it,
+/// or says none was found.
+std::string ExplainUnboundedBranch(const SystemModel& model, double asymptote_hz) {
+  constexpr int kScan = 12;
+  constexpr double kSpan = 0.03;
   FloquetOptions fo;
   fo.tolerance = 1e-8;
-  double previous = lo;
-  for (int i = 0; i <= kScan; ++i) {
-    const double f = lo + (hi - lo) * i / kScan;
-    fo.mesh_frequency_hz = f;
-    const FloquetResult r = ComputeFloquet(model, fo);
-    if (r.verdict == FloquetVerdict::kUnstable) {
-      s << "the linear time-varying model (every slice loaded), which the two-flank mesh "
-        << "approaches at amplitudes far above the backlash, is parametrically unstable from "
-        << "between " << previous << " and " << f
-        << " Hz (Floquet, max |lambda| = " << r.max_abs_multiplier << " at " << f
-        << " Hz): physics, not a numerical failure";
-      return s.str();
-    }
-    previous = f;
+  std::vector<double> f(2 * kScan + 1);
+  std::vector<FloquetResult> r;
+  for (int i = 0; i <= 2 * kScan; ++i) {
+    f[i] = asymptote_hz * (1.0 + kSpan * (i - kScan) / kScan);
+    fo.mesh_frequency_hz = f[i];
+    r.push_back(ComputeFloquet(model, fo));
   }
-  s << "the linear time-varying model (every slice loaded) is not found parametrically unstable "
-    << "between " << lo << " and " << hi << " Hz (Floquet on " << kScan + 1
-    << " frequencies): cause not identified";
+  std::ostringstream s;
+  s << std::setprecision(6);
+  int best = -1;
+  for (int i = 0; i < 2 * kScan; ++i) {
+    const bool a = r[i].verdict == FloquetVerdict::kUnstable;
+    const bool b = r[i + 1].verdict == FloquetVerdict::kUnstable;
+    if (a == b || r[i].verdict == FloquetVerdict::kUndetermined ||
+        r[i + 1].verdict == FloquetVerdict::kUndetermined) {
+      continue;
+    }
+    const double mid = 0.5 * (f[i] + f[i + 1]);
+    if (best < 0 ||
+        std::abs(mid - asymptote_hz) < std::abs(0.5 * (f[best] + f[best + 1]) - asymptote_hz)) {
+      best = i;
+    }
+  }
+  if (best < 0) {
+    s << "the linear time-varying model (every slice loaded) shows no parametric-instability "
+      << "edge within " << 100 * kSpan << " % of it (Floquet on " << 2 * kScan + 1
+      << " frequencies): cause not identified";
+    return s.str();
+  }
+  const int u = r[best].verdict == FloquetVerdict::kUnstable ? best : best + 1;
+  s << "the linear time-varying model (every slice loaded), which the two-flank mesh approaches "
+    << "at amplitudes far above the backlash, has a parametric-instability edge between " << f[best]
+    << " and " << f[best + 1] << " Hz (Floquet: max |lambda| = " << r[u].max_abs_multiplier
+    << " at " << f[u] << " Hz): physics, not a numerical failure";
   return s.str();
 }
 
@@ -151,12 +165,16 @@ SystemNhbCurve TraceSystemNonlinearHb(const SystemModel& model, const SystemNhbO
     out.summary.message += "; " + NameResonantMode(model, curve.undamped_resonance_omega / kTwoPi,
                                                    hb.period_multiple, curve.harmonics_used);
   }
-  if (curve.unbounded_branch_omega > 0.0) {
-    out.unbounded_branch_hz = curve.unbounded_branch_omega / kTwoPi;
-    const std::string why = ExplainUnboundedBranch(model, curve.unbounded_branch_stop / kTwoPi,
-                                                   out.unbounded_branch_hz);
+  {
+    size_t k = 0;
     for (std::string& w : out.summary.warnings) {
-      if (w.rfind("the branch grows without bound", 0) == 0) w += "; " + why;
+      if (w.rfind("the branch grows without bound", 0) != 0 ||
+          k >= curve.unbounded_branches.size()) {
+        continue;
+      }
+      const double hz = curve.unbounded_branches[k++][0] / kTwoPi;
+      out.unbounded_branches_hz.push_back(hz);
+      w += "; " + ExplainUnboundedBranch(model, hz);
     }
   }
   for (const std::string& w : sp.warnings) out.summary.warnings.push_back(w);

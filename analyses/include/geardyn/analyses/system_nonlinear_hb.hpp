@@ -141,9 +141,9 @@ struct SystemNhbCurve {
   std::vector<SystemNhbJump> jumps;
   int harmonics_used = 0;   ///< H
   int period_multiple = 1;  ///< p (base frequency ω_m/p)
-  /// A branch growing without bound towards this mesh frequency [Hz] (NhbCurve::
-  /// unbounded_branch_omega; a warning gives the linear model's Floquet onset); 0 when none.
-  double unbounded_branch_hz = 0.0;
+  /// Asymptotes [Hz] of branches growing without bound (NhbCurve::unbounded_branches; each
+  /// warning gives the linear model's nearest parametric-instability edge); empty when none.
+  std::vector<double> unbounded_branches_hz;
   Summary summary;  ///< engine summary plus the problem's warnings
 };
 
