@@ -118,7 +118,10 @@ json MakeNhbReport(const std::string& scene_source, const NhbRunInfo& info,
     jumps.push_back({{"direction", j.up_sweep ? "up" : "down"},
                      {"mesh_frequency_hz", Finite(j.mesh_frequency_hz)},
                      {"rms_dte_before_m", Finite(j.rms_dte_before)},
-                     {"rms_dte_after_m", Finite(j.rms_dte_after)}});
+                     {"rms_dte_after_m", Finite(j.rms_dte_after)},
+                     {"rms_dte_landings_m",
+                      FiniteArray(j.rms_dte_landings.data(),
+                                  static_cast<Eigen::Index>(j.rms_dte_landings.size()))}});
   }
   report["jumps"] = jumps;
   report["wall_time_s"] = curve.summary.wall_time_s;
@@ -238,8 +241,21 @@ std::string FormatNhbText(const json& report) {
       // traced), so the sweep lands on a response that is not a stable T-periodic orbit of
       // this basis (subharmonic, quasi-periodic or an untraced branch).
       if (j["rms_dte_after_m"].is_number()) {
-        std::snprintf(line, sizeof(line), "%.5g um\n", 1e6 * Get(j["rms_dte_after_m"]));
+        std::snprintf(line, sizeof(line), "%.5g um", 1e6 * Get(j["rms_dte_after_m"]));
         os << line;
+        // Several stable branches here: the transient decides (issue 13: the integration of
+        // the spur pair with backlash lands on the farther one).
+        const auto& landings = j["rms_dte_landings_m"];
+        if (landings.is_array() && landings.size() > 1) {
+          os << " or";
+          for (size_t k = 1; k < landings.size(); ++k) {
+            std::snprintf(line, sizeof(line), " %.5g um", 1e6 * Get(landings[k]));
+            os << line;
+          }
+          os << " (" << landings.size() << " stable branches at this frequency: which one a "
+             << "sweep lands on depends on the transient)";
+        }
+        os << "\n";
       } else {
         os << "no stable periodic response traced at this frequency\n";
       }

@@ -199,6 +199,7 @@ SystemNhbCurve TraceSystemNonlinearHb(const SystemModel& model, const SystemNhbO
     sj.mesh_frequency_hz = j.omega / kTwoPi;
     sj.rms_dte_before = j.rms_before;
     sj.rms_dte_after = j.rms_after;
+    sj.rms_dte_landings = j.rms_landings;
     out.jumps.push_back(sj);
   }
   out.summary.wall_time_s =

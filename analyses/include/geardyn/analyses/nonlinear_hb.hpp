@@ -338,7 +338,7 @@ struct NhbFold {
 };
 
 /// @brief A jump of a slow sweep: from the stable branch ending at a fold to another stable
-/// branch at the same Ω (the crossing nearest in RMS).
+/// branch at the same Ω (the crossing nearest in RMS; all of them in rms_landings).
 struct NhbJump {
   bool up_sweep = true;     ///< true: seen by an increasing-Ω sweep (fold with Ω maximum).
   double omega = 0.0;       ///< Jump frequency (the fold's Ω).
@@ -346,6 +346,11 @@ struct NhbJump {
   double rms_after = 0.0;   ///< RMS of coordinate 0 on the landing branch (NaN if none).
   double max_before = 0.0;  ///< max of coordinate 0 before the jump.
   double max_after = 0.0;   ///< max of coordinate 0 after the jump (NaN if none).
+  /// RMS of coordinate 0 on every stable branch crossing Ω (other than the two meeting at the
+  /// fold), nearest to rms_before first (rms_after is the first). With more than one, which one
+  /// a sweep lands on is decided by the transient (the basins of attraction), not by the HB:
+  /// on the spur pair with backlash the time integration lands on the farther one.
+  std::vector<double> rms_landings;
 };
 
 /// @brief A traced frequency-response curve.

@@ -130,6 +130,9 @@ struct SystemNhbJump {
   double mesh_frequency_hz = 0.0;  ///< [Hz]
   double rms_dte_before = 0.0;     ///< RMS DTE of the first mesh before the jump [m]
   double rms_dte_after = 0.0;      ///< after (NaN when no landing branch was traced) [m]
+  /// RMS DTE on every stable branch at the jump frequency, nearest first (NhbJump::
+  /// rms_landings: with several, the transient decides which one a sweep lands on) [m].
+  std::vector<double> rms_dte_landings;
 };
 
 /// @brief The traced frequency-response curve.
