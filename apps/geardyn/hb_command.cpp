@@ -48,10 +48,10 @@ constexpr double kProgressInterval = 0.5;
 struct HbCommandOptions {
   SceneCommandOptions scene;
   HbSettings settings;
-  bool nonlinear = false;                                      // --nonlinear
-  std::string stability = "monodromy";                         // --stability
-  int monodromy_steps = 0;                                     // --monodromy-steps (0: automatic)
-  int branch_search = NhbContinuationOptions{}.branch_search;  // --branch-search (0: off)
+  bool nonlinear = false;               // --nonlinear
+  std::string stability = "monodromy";  // --stability
+  int monodromy_steps = 0;              // --monodromy-steps (0: automatic)
+  int branch_search = SystemNhbOptions{}.continuation.branch_search;  // --branch-search (0: off)
   CLI::Option* tolerance_option = nullptr;
 };
 

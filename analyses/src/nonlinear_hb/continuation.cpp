@@ -57,10 +57,11 @@ constexpr double kUndampedBand = 1e-3;
 /// trace stops once ‖x‖ has grown kUnboundedGrowth-fold since the smallest ‖x‖ of the branch (the
 /// points since the last fold) and 1/‖x‖ is linear in Ω — the asymptote Ω* extrapolated from the
 /// points at ‖x‖/4 → ‖x‖/2 and from ‖x‖/2 → ‖x‖ agree within kUnboundedConsistency of the
-/// remaining distance |Ω* − Ω| — with Ω* within kUnboundedBand·|Ω|. A damped forced resonance
-/// (ζ) reads as 1/δ only while δ ≫ ζ: 1/‖x‖ bends within a few ζ of it, so the two
-/// extrapolations disagree there unless ζ ≲ kUnboundedBand/3, and the growth needs δ to shrink
-/// 32-fold along one branch.
+/// remaining distance |Ω* − Ω| — with Ω* within kUnboundedBand·|Ω| and within ζ/2·|Ω|, ζ the
+/// problem's damping scale (max_i C_ii/(2 M_ii Ω)). A damped forced resonance of damping ratio ζ
+/// reads as 1/δ only while δ ≫ ζ and bends within a few ζ of its peak, so its two
+/// extrapolations disagree before it gets within ζ/2 (a test with ζ = 10⁻³ and the band alone
+/// stopped a bounded resonance).
 constexpr double kUnboundedGrowth = 32.0;
 constexpr double kUnboundedConsistency = 0.05;
 constexpr double kUnboundedBand = 0.02;
@@ -86,7 +87,8 @@ struct UnboundedBranch {
 };
 
 /// The test of kUnboundedGrowth on the (Ω, ‖x‖) of the current branch (last = newest point).
-UnboundedBranch DetectUnboundedBranch(const std::vector<std::array<double, 2>>& pts) {
+UnboundedBranch DetectUnboundedBranch(const std::vector<std::array<double, 2>>& pts,
+                                      double damping_scale) {
   UnboundedBranch out;
   if (pts.size() < 3) return out;
   const auto& p3 = pts.back();
@@ -117,7 +119,8 @@ UnboundedBranch DetectUnboundedBranch(const std::vector<std::array<double, 2>>& 
   const double remaining = std::abs(w23 - p3[0]);
   if (!std::isfinite(w12) || !std::isfinite(w23) || (w23 - p3[0]) * (p3[0] - p2->at(0)) <= 0.0 ||
       std::abs(w12 - w23) > kUnboundedConsistency * remaining ||
-      remaining > kUnboundedBand * std::abs(p3[0])) {
+      remaining >
+          std::min(kUnboundedBand, 0.5 * damping_scale / std::abs(p3[0])) * std::abs(p3[0])) {
     return out;
   }
   out.found = true;
@@ -262,6 +265,15 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   double band_norm = x.norm();
   // Unbounded-branch watch: (Ω, ‖x‖) of the points since the last fold.
   const bool damped = !problem.damping.isZero(0.0);
+  // The damping scale [1/s]: max_i C_ii/(2 M_ii), so that ζ ≈ damping_rate/Ω (exact for one
+  // DOF). A damped forced resonance saturates within ~ζΩ of its frequency, so a 1/|Ω* − Ω| growth
+  // is taken as unbounded only within ζΩ/2 of Ω* (ζ = 10⁻³ on the B&K oscillator: no stop).
+  double damping_rate = 0.0;
+  for (Eigen::Index i = 0; i < problem.mass.rows(); ++i) {
+    if (problem.mass(i, i) > 0) {
+      damping_rate = std::max(damping_rate, problem.damping(i, i) / (2.0 * problem.mass(i, i)));
+    }
+  }
   std::vector<std::array<double, 2>> branch_norms{{omega, x.norm()}};
   while (static_cast<int>(curve.points.size()) < c.max_points) {
     // The step taken: ds, capped so that the predicted |ΔΩ| ≤ max_omega_step.
@@ -551,7 +563,7 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
       if (fold) branch_norms.clear();
       branch_norms.push_back({omega, norm});
       if (damped) {
-        const UnboundedBranch u = DetectUnboundedBranch(branch_norms);
+        const UnboundedBranch u = DetectUnboundedBranch(branch_norms, damping_rate);
         if (u.found) {
           std::ostringstream msg;
           msg << std::setprecision(6) << "the branch grows without bound towards "

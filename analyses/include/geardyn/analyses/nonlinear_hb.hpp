@@ -305,9 +305,11 @@ struct NhbContinuationOptions {
   /// contact-branch guess with its alternating part scaled by 1, 0.3, 3 and 8; a solution off
   /// the traced curve (farther than 0.5 % in Ω or 2 % in RMS of coordinate 0 from every traced
   /// segment) is traced both ways to the ends of the range (or around its loop) and appended as
-  /// a new segment (NhbPoint::segment), and the jumps are found over all segments. 0: off;
-  /// at most kMaxBranchSearch.
-  int branch_search = 8;
+  /// a new segment (NhbPoint::segment), and the jumps are found over all segments. 0: off
+  /// (the default of the single-coordinate engine, whose tests measured a 100 s Newton from the
+  /// ×8 guess on the B&K oscillator; the gear-system path turns it on, SystemNhbOptions); at
+  /// most kMaxBranchSearch.
+  int branch_search = 0;
   static constexpr int kMaxBranchSearch = 1000;
   /// Formats an Ω for messages and warnings in the caller's units (e.g. "mesh frequency
   /// 562.3 Hz" for Ω = 2π f_m); empty: "Omega = <value>" in the problem's units.

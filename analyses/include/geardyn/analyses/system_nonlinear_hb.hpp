@@ -83,8 +83,13 @@ struct SystemNhbOptions {
   NhbOptions hb;
   double start_hz = 0.0;  ///< first mesh frequency f_m [Hz] > 0
   double end_hz = 0.0;    ///< last mesh frequency [Hz] > 0, ≠ start_hz
-  /// Continuation steps (omega_start/omega_end are set from start_hz/end_hz).
-  NhbContinuationOptions continuation;
+  /// Continuation steps (omega_start/omega_end are set from start_hz/end_hz). The branch search
+  /// is on by default here (8 frequencies): 32 Newton solves on the condensed problem.
+  NhbContinuationOptions continuation = [] {
+    NhbContinuationOptions c;
+    c.branch_search = 8;
+    return c;
+  }();
   bool compute_element_forces = true;  ///< per-element mean/RMS forces (one solve per harmonic)
   bool keep_response = false;          ///< keep Q_k of q in every point (SystemNhbPoint::response)
   /// False (with the field and reason in `why`) on an invalid value.
