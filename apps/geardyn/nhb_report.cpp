@@ -124,6 +124,10 @@ json MakeNhbReport(const std::string& scene_source, const NhbRunInfo& info,
                                   static_cast<Eigen::Index>(j.rms_dte_landings.size()))}});
   }
   report["jumps"] = jumps;
+  // Asymptotes of branches whose amplitude grows without bound (each explained in a warning).
+  report["unbounded_branches_hz"] =
+      FiniteArray(curve.unbounded_branches_hz.data(),
+                  static_cast<Eigen::Index>(curve.unbounded_branches_hz.size()));
   report["wall_time_s"] = curve.summary.wall_time_s;
   return report;
 }
