@@ -51,6 +51,7 @@ struct HbCommandOptions {
   bool nonlinear = false;               // --nonlinear
   std::string stability = "monodromy";  // --stability
   int monodromy_steps = 0;              // --monodromy-steps (0: automatic)
+  int branch_search = SystemNhbOptions{}.continuation.branch_search;  // --branch-search (0: off)
   CLI::Option* tolerance_option = nullptr;
 };
 
@@ -94,6 +95,7 @@ int RunNonlinearHb(const HbCommandOptions& opts, const Scene& scene, const Scene
       std::min(options.continuation.fold_tolerance, settings.tolerance);
   options.hb.stability = StabilityMethod(opts.stability);
   options.hb.monodromy_steps = opts.monodromy_steps;
+  options.continuation.branch_search = opts.branch_search;
   options.start_hz = frequencies.front();
   options.end_hz = frequencies.back();
   const int n = static_cast<int>(frequencies.size());
@@ -276,6 +278,12 @@ Command AddHbCommand(CLI::App& app) {
                   "and stiffness steps; elsewhere |mu| near 1 is first-order in the step: raise "
                   "it (e.g. 256) when the stable/unstable flag flickers")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--branch-search", opts->branch_search,
+                  "nonlinear: frequencies inside the range (default 8, 0: off, at most 1000) "
+                  "where Newton starts from four scaled contact guesses; a solution off the "
+                  "traced curve (a detached branch or an isola) is traced both ways and added as "
+                  "a new segment (JSON 'segment', new branch numbers)")
+      ->check(CLI::Range(0, NhbContinuationOptions::kMaxBranchSearch));
   cmd->add_flag("--progress", opts->settings.progress, "print the progress on the error stream");
   Command command{cmd, nullptr};
   command.run_with_err = [opts](std::ostream& out, std::ostream& err) {

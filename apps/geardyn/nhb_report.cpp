@@ -72,6 +72,7 @@ json MakeNhbReport(const std::string& scene_source, const NhbRunInfo& info,
     json p;
     p["mesh_frequency_hz"] = Finite(r.mesh_frequency_hz);
     p["branch"] = r.point.branch;
+    p["segment"] = r.point.segment;
     // true / false, null when undetermined (a non-finite multiplier or a failed point) or not
     // computed (--stability none: no verdict is printed for a computation that did not run).
     const bool computed = info.stability != "none";
@@ -117,9 +118,16 @@ json MakeNhbReport(const std::string& scene_source, const NhbRunInfo& info,
     jumps.push_back({{"direction", j.up_sweep ? "up" : "down"},
                      {"mesh_frequency_hz", Finite(j.mesh_frequency_hz)},
                      {"rms_dte_before_m", Finite(j.rms_dte_before)},
-                     {"rms_dte_after_m", Finite(j.rms_dte_after)}});
+                     {"rms_dte_after_m", Finite(j.rms_dte_after)},
+                     {"rms_dte_landings_m",
+                      FiniteArray(j.rms_dte_landings.data(),
+                                  static_cast<Eigen::Index>(j.rms_dte_landings.size()))}});
   }
   report["jumps"] = jumps;
+  // Asymptotes of branches whose amplitude grows without bound (each explained in a warning).
+  report["unbounded_branches_hz"] =
+      FiniteArray(curve.unbounded_branches_hz.data(),
+                  static_cast<Eigen::Index>(curve.unbounded_branches_hz.size()));
   report["wall_time_s"] = curve.summary.wall_time_s;
   return report;
 }
@@ -237,8 +245,21 @@ std::string FormatNhbText(const json& report) {
       // traced), so the sweep lands on a response that is not a stable T-periodic orbit of
       // this basis (subharmonic, quasi-periodic or an untraced branch).
       if (j["rms_dte_after_m"].is_number()) {
-        std::snprintf(line, sizeof(line), "%.5g um\n", 1e6 * Get(j["rms_dte_after_m"]));
+        std::snprintf(line, sizeof(line), "%.5g um", 1e6 * Get(j["rms_dte_after_m"]));
         os << line;
+        // Several stable branches here: the transient decides (issue 13: the integration of
+        // the spur pair with backlash lands on the farther one).
+        const auto& landings = j["rms_dte_landings_m"];
+        if (landings.is_array() && landings.size() > 1) {
+          os << " or";
+          for (size_t k = 1; k < landings.size(); ++k) {
+            std::snprintf(line, sizeof(line), " %.5g um", 1e6 * Get(landings[k]));
+            os << line;
+          }
+          os << " (" << landings.size() << " stable branches at this frequency: which one a "
+             << "sweep lands on depends on the transient)";
+        }
+        os << "\n";
       } else {
         os << "no stable periodic response traced at this frequency\n";
       }
@@ -267,11 +288,12 @@ std::string RenderNhbPlot(const SystemNhbCurve& curve, const std::string& title,
     bool have_previous = false;
     bool labelled_stable = false, labelled_unstable = false;
     double previous_x = 0.0, previous_y = 0.0;
+    int previous_segment = 0;
     for (const SystemNhbPoint& r : curve.points) {
-      if (!PointOk(r)) {
-        have_previous = false;
-        continue;
-      }
+      // A branch-search segment is not joined to the point before it.
+      if (!PointOk(r) || r.point.segment != previous_segment) have_previous = false;
+      previous_segment = r.point.segment;
+      if (!PointOk(r)) continue;
       const double x = r.mesh_frequency_hz, y = 1e6 * r.meshes.front().rms_dte;
       // Undetermined: dashed. Not computed (--stability none): solid, without a legend.
       const bool stable = !stability_computed || r.point.stable == FloquetVerdict::kStable;

@@ -293,3 +293,54 @@ TEST(HbNonlinearCommandTest, LinearFlagKeepsTheLinearReport) {
 
 }  // namespace
 }  // namespace geardyn::app
+
+namespace geardyn::app {
+namespace {
+
+// Issue 13: the stiff-bearing spur pair with backlash (spur_backlash_sweep_test's scene) has a
+// detached stable branch above the lower branch's fold (≈ 2 917 Hz) that continuation from the
+// start of 2 800–3 100 Hz cannot reach. Truth: the single-frequency solve at 3 000 Hz (Newton
+// from the contact guess, no continuation) lands on it; with the default branch search the
+// sweep holds a stable point on a separate segment with that RMS, without it no point does.
+TEST(HbNonlinearCommandTest, BranchSearchAddsTheDetachedBranchAsASegment) {
+  const std::vector<std::string> spur = {
+      "--harmonics", "16",
+      "--set",       "planar=true",
+      "--set",       "mesh.pinion-wheel.model=\"slices\"",
+      "--set",       "mesh.pinion-wheel.slices=10",
+      "--set",       "mesh.pinion-wheel.center_distance=0.15001",
+      "--set",       "mesh.pinion-wheel.damping_ratio=0.05",
+      "--set",       "bearing.pinion-support.stiffness=[3e11,3e11,1e9,1e8,1e8,0.0]",
+      "--set",       "bearing.wheel-support.stiffness=[3e11,3e11,1e9,1e8,1e8,0.0]"};
+  auto args = [&](std::vector<std::string> head) {
+    std::vector<std::string> a = {"hb", "builtin:kahraman-blankenship-rig"};
+    a.insert(a.end(), head.begin(), head.end());
+    a.insert(a.end(), spur.begin(), spur.end());
+    return a;
+  };
+  const json single = RunJson(args({"--mesh-frequency", "3000"}));
+  ASSERT_EQ(single["points"].size(), 1u);
+  const double detached = single["points"][0]["meshes"][0]["rms_dte_m"].get<double>();
+  // Stable points within 5 Hz of 3 000 Hz whose RMS is the detached branch's (1e-2: the
+  // continuation's points are not exactly at 3 000 Hz), and their segments.
+  auto near_detached = [&](const json& report) {
+    std::vector<int> segments;
+    for (const json& p : report["points"]) {
+      if (std::abs(p["mesh_frequency_hz"].get<double>() - 3000.0) > 5.0) continue;
+      if (p["verdict"] != "stable") continue;
+      const double rms = p["meshes"][0]["rms_dte_m"].get<double>();
+      if (std::abs(rms - detached) < 1e-2 * detached) segments.push_back(p["segment"].get<int>());
+    }
+    return segments;
+  };
+  const json with = RunJson(args({"--mesh-frequency", "2800:3100:30"}));
+  EXPECT_EQ(with["status"], "success");
+  const std::vector<int> found = near_detached(with);
+  ASSERT_FALSE(found.empty()) << "the detached branch (" << detached << " m) is not in the sweep";
+  for (int s : found) EXPECT_GE(s, 1);
+  const json without = RunJson(args({"--mesh-frequency", "2800:3100:30", "--branch-search", "0"}));
+  EXPECT_TRUE(near_detached(without).empty());
+}
+
+}  // namespace
+}  // namespace geardyn::app

@@ -28,6 +28,7 @@
 
 #include "geardyn/analyses/nonlinear_hb.hpp"
 #include "geardyn/common/check.hpp"
+#include "nonlinear_hb/branch_search.hpp"
 #include "nonlinear_hb/folds.hpp"
 
 namespace geardyn {
@@ -50,6 +51,20 @@ constexpr double kFallbackTangentOmega = 0.2;
 /// undamped one (A ∝ 1/δ) doubles within 10⁻³ once it is within 2·10⁻³ of the resonance.
 constexpr double kUndampedGrowth = 2.0;
 constexpr double kUndampedBand = 1e-3;
+/// Unbounded branch of a damped problem (issue 13: a two-flank branch of a clearance law, which
+/// at amplitudes far above the clearance is homogeneous of degree one, so its amplitude grows as
+/// 1/|Ω* − Ω| towards the Ω* where the large-amplitude linear system has a multiplier 1): the
+/// trace stops once ‖x‖ has grown kUnboundedGrowth-fold since the smallest ‖x‖ of the branch (the
+/// points since the last fold) and 1/‖x‖ is linear in Ω — the asymptote Ω* extrapolated from the
+/// points at ‖x‖/4 → ‖x‖/2 and from ‖x‖/2 → ‖x‖ agree within kUnboundedConsistency of the
+/// remaining distance |Ω* − Ω| — with Ω* within kUnboundedBand·|Ω| and within ζ/2·|Ω|, ζ the
+/// problem's damping scale (max_i C_ii/(2 M_ii Ω)). A damped forced resonance of damping ratio ζ
+/// reads as 1/δ only while δ ≫ ζ and bends within a few ζ of its peak, so its two
+/// extrapolations disagree before it gets within ζ/2 (a test with ζ = 10⁻³ and the band alone
+/// stopped a bounded resonance).
+constexpr double kUnboundedGrowth = 32.0;
+constexpr double kUnboundedConsistency = 0.05;
+constexpr double kUnboundedBand = 0.02;
 /// Two located folds of the same kind are the same fold when their Ω agree within kSameFold
 /// (relative; above the fold tolerance and the sampled AFT's repeatability, ~1e-6 on the rig,
 /// far below the distance of distinct folds) and their RMS within kSameFoldRms.
@@ -65,8 +80,61 @@ std::string OmegaText(const NhbContinuationOptions& c, double omega) {
   return s.str();
 }
 
+struct UnboundedBranch {
+  bool found = false;
+  double omega = 0.0;   ///< extrapolated asymptote Ω*
+  double growth = 0.0;  ///< ‖x‖ growth over the points used
+};
+
+/// The test of kUnboundedGrowth on the (Ω, ‖x‖) of the current branch (last = newest point).
+UnboundedBranch DetectUnboundedBranch(const std::vector<std::array<double, 2>>& pts,
+                                      double damping_scale) {
+  UnboundedBranch out;
+  if (pts.size() < 3) return out;
+  const auto& p3 = pts.back();
+  double smallest = p3[1];
+  for (const auto& p : pts) smallest = std::min(smallest, p[1]);
+  if (!(p3[1] >= kUnboundedGrowth * smallest)) return out;
+  // The newest points at or below ‖x‖/2 and ‖x‖/4.
+  const std::array<double, 2>*p2 = nullptr, *p1 = nullptr;
+  for (auto it = pts.rbegin(); it != pts.rend(); ++it) {
+    if (p2 == nullptr && (*it)[1] <= 0.5 * p3[1]) p2 = &*it;
+    if (p2 != nullptr && (*it)[1] <= 0.25 * p3[1]) {
+      p1 = &*it;
+      break;
+    }
+  }
+  if (p1 == nullptr || p2 == nullptr) return out;
+  // Ω monotone over the three (no fold in between, but a kink could reverse Ω).
+  if (!((p1->at(0) < p2->at(0) && p2->at(0) < p3[0]) ||
+        (p1->at(0) > p2->at(0) && p2->at(0) > p3[0]))) {
+    return out;
+  }
+  // Zero of the line through (Ω_a, 1/‖x_a‖), (Ω_b, 1/‖x_b‖).
+  auto zero = [](const std::array<double, 2>& a, const std::array<double, 2>& b) {
+    const double ra = 1.0 / a[1], rb = 1.0 / b[1];
+    return b[0] - rb * (b[0] - a[0]) / (rb - ra);
+  };
+  const double w12 = zero(*p1, *p2), w23 = zero(*p2, p3);
+  const double remaining = std::abs(w23 - p3[0]);
+  if (!std::isfinite(w12) || !std::isfinite(w23) || (w23 - p3[0]) * (p3[0] - p2->at(0)) <= 0.0 ||
+      std::abs(w12 - w23) > kUnboundedConsistency * remaining ||
+      remaining >
+          std::min(kUnboundedBand, 0.5 * damping_scale / std::abs(p3[0])) * std::abs(p3[0])) {
+    return out;
+  }
+  out.found = true;
+  out.omega = w23;
+  out.growth = p3[1] / p1->at(1);
+  return out;
+}
+
+}  // namespace
+
+namespace internal {
+
 NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options,
-                            const NhbContinuationOptions& c, int H) {
+                            const NhbContinuationOptions& c, int H, BranchStart* from) {
   NhbCurve curve;
   curve.harmonics_used = H;
   NhbSolver solver(problem, options, H);
@@ -79,8 +147,9 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   const bool smooth = solver.exact_integration();
   (void)n;
   const double direction = c.omega_end > c.omega_start ? 1.0 : -1.0;
-  double omega = c.omega_start;
-  VectorX x = solver.ContactGuess(omega);
+  // A branch-search trace starts from its solution and stops where it leaves the range.
+  double omega = from ? from->omega : c.omega_start;
+  VectorX x = from ? from->x : solver.ContactGuess(omega);
   Status status;
   double rn = 0.0;
   long newton = solver.Newton(x, omega, &status, &rn);
@@ -194,6 +263,18 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   // Undamped-resonance watch: Ω and ‖x‖ where the current narrow frequency band began.
   double band_omega = omega;
   double band_norm = x.norm();
+  // Unbounded-branch watch: (Ω, ‖x‖) of the points since the last fold.
+  const bool damped = !problem.damping.isZero(0.0);
+  // The damping scale [1/s]: max_i C_ii/(2 M_ii), so that ζ ≈ damping_rate/Ω (exact for one
+  // DOF). A damped forced resonance saturates within ~ζΩ of its frequency, so a 1/|Ω* − Ω| growth
+  // is taken as unbounded only within ζΩ/2 of Ω* (ζ = 10⁻³ on the B&K oscillator: no stop).
+  double damping_rate = 0.0;
+  for (Eigen::Index i = 0; i < problem.mass.rows(); ++i) {
+    if (problem.mass(i, i) > 0) {
+      damping_rate = std::max(damping_rate, problem.damping(i, i) / (2.0 * problem.mass(i, i)));
+    }
+  }
+  std::vector<std::array<double, 2>> branch_norms{{omega, x.norm()}};
   while (static_cast<int>(curve.points.size()) < c.max_points) {
     // The step taken: ds, capped so that the predicted |ΔΩ| ≤ max_omega_step.
     double step = ds;
@@ -226,6 +307,7 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
     int it = 0;
     double res = 0.0;
     double previous_correction = 0.0;
+    double tol_it = tol;
     bool assembled = false;  // B holds the bordered matrix at (xc, oc)
     for (; it <= c.max_corrector_iterations; ++it) {
       if (smooth) {
@@ -236,7 +318,11 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
       assembled = !smooth;
       res = R.lpNorm<Eigen::Infinity>();
       if (!std::isfinite(res)) break;
-      if (res <= tol) {
+      // Relative to the residual's largest term too: on a branch growing without bound (issue
+      // 13: the spur pair's two-flank branch at 260 µm carries 1.6e5 N in N_k against a 1.4e3 N
+      // excitation) the round-off of R exceeds the excitation-scaled tolerance.
+      tol_it = std::max(tol, tol_scale * solver.LastLawForceNorm());
+      if (res <= tol_it) {
         converged = true;
         break;
       }
@@ -266,7 +352,7 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
       // converged once the residual is small. x and Ω each against their own size: Ω of a gear
       // system is ~1e4 rad/s while x is ~1e-5 m, and one absolute bound never held for both.
       if (z.head(m).lpNorm<Eigen::Infinity>() <= 1e-13 * (1.0 + xc.lpNorm<Eigen::Infinity>()) &&
-          std::abs(z[m]) <= 1e-13 * (1.0 + std::abs(oc)) && res <= 1e3 * tol) {
+          std::abs(z[m]) <= 1e-13 * (1.0 + std::abs(oc)) && res <= 1e3 * tol_it) {
         solver.Evaluate(xc, oc, &R, nullptr, nullptr);
         assembled = false;
         res = R.lpNorm<Eigen::Infinity>();
@@ -440,6 +526,10 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
                  std::abs(f.omega - loc.omega) <= kSameFold * std::abs(loc.omega) &&
                  std::abs(f.rms - at_fold.rms[0]) <= kSameFoldRms * std::abs(f.rms) && left_fold(f);
         });
+        if (seen != located.end() && from != nullptr) {
+          from->closed = true;  // an isola, traced once around: the result, not a failure
+          break;
+        }
         if (seen != located.end()) {
           std::ostringstream msg;
           msg << "the branch closed on itself: it came back to the fold at "
@@ -467,6 +557,7 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
     x = xc;
     omega = oc;
     t = t_new;
+    if (from != nullptr && (omega - c.omega_start) * direction < 0) break;  // left the range
     if ((omega - c.omega_start) * direction < -0.5 * std::abs(c.omega_end - c.omega_start)) {
       curve.summary.warnings.push_back(
           "the curve turned back past the start of the range (at " + OmegaText(c, omega) +
@@ -480,6 +571,22 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
       const double norm = x.norm();
       const bool fold = curve.points.size() >= 2 &&
                         (curve.points[curve.points.size() - 2].tangent_omega > 0) != (t[m] > 0);
+      if (fold) branch_norms.clear();
+      branch_norms.push_back({omega, norm});
+      if (damped) {
+        const UnboundedBranch u = DetectUnboundedBranch(branch_norms, damping_rate);
+        if (u.found) {
+          std::ostringstream msg;
+          msg << std::setprecision(6) << "the branch grows without bound towards "
+              << OmegaText(c, u.omega) << " (extrapolated from 1/‖x‖, linear in the frequency "
+              << "over the last " << std::setprecision(3) << u.growth << "-fold growth): its "
+              << "amplitude is unbounded there, so the trace of this branch stops at "
+              << OmegaText(c, omega);
+          curve.summary.warnings.push_back(msg.str());
+          curve.unbounded_branches.push_back({u.omega, omega});
+          break;
+        }
+      }
       if (fold || std::abs(omega - band_omega) > kUndampedBand * std::abs(band_omega)) {
         band_omega = omega;
         band_norm = norm;
@@ -564,7 +671,7 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   return curve;
 }
 
-}  // namespace
+}  // namespace internal
 
 NhbCurve TraceNonlinearHarmonicBalance(const NhbProblem& problem, const NhbOptions& options,
                                        const NhbContinuationOptions& continuation) {
@@ -574,17 +681,22 @@ NhbCurve TraceNonlinearHarmonicBalance(const NhbProblem& problem, const NhbOptio
   GEARDYN_THROW_UNLESS(options.IsValid(&why), "nonlinear HB options: " << why);
   GEARDYN_THROW_UNLESS(continuation.IsValid(&why), "nonlinear HB continuation: " << why);
   NhbCurve curve;
+  using internal::TraceWithHarmonics;
   if (options.harmonics > 0) {
-    curve = TraceWithHarmonics(problem, options, continuation, options.harmonics);
+    curve = TraceWithHarmonics(problem, options, continuation, options.harmonics, nullptr);
   } else {
     for (int H = 8; H <= options.max_harmonics; H *= 2) {
-      curve = TraceWithHarmonics(problem, options, continuation, H);
+      curve = TraceWithHarmonics(problem, options, continuation, H, nullptr);
       if (!curve.summary.ok() || curve.summary.error_estimate <= options.harmonic_tolerance) break;
     }
     if (curve.summary.ok() && curve.summary.error_estimate > options.harmonic_tolerance) {
       curve.summary.status = Status::kToleranceNotMet;
       curve.summary.message = "top-harmonic energy above harmonic_tolerance at max_harmonics";
     }
+  }
+  if (continuation.branch_search > 0 && !curve.points.empty() &&
+      curve.summary.status != Status::kNotConverged) {
+    internal::SearchBranches(problem, options, continuation, curve);
   }
   curve.summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -93,6 +93,12 @@ void FindFoldsAndJumps(NhbCurve& curve, const std::vector<double>& steps, double
     }
     pts[i].branch = branch;
   }
+  FindJumps(curve);
+}
+
+void FindJumps(NhbCurve& curve) {
+  auto& pts = curve.points;
+  curve.jumps.clear();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const NhbFold& fold : curve.folds) {
     // Both branches meeting at the fold lie on the same side in Ω, the side a sweep comes
@@ -132,12 +138,15 @@ void FindFoldsAndJumps(NhbCurve& curve, const std::vector<double>& steps, double
       if ((p.omega - fold.omega) * (q.omega - fold.omega) > 0 || p.omega == q.omega) continue;
       const double w = (fold.omega - p.omega) / (q.omega - p.omega);
       const double rms = Lerp(p.rms[0], q.rms[0], w);
+      jump.rms_landings.push_back(rms);
       if (std::abs(rms - fold.rms) < best) {
         best = std::abs(rms - fold.rms);
         jump.rms_after = rms;
         jump.max_after = Lerp(p.maximum[0], q.maximum[0], w);
       }
     }
+    std::sort(jump.rms_landings.begin(), jump.rms_landings.end(),
+              [&](double a, double b) { return std::abs(a - fold.rms) < std::abs(b - fold.rms); });
     curve.jumps.push_back(jump);
   }
 }

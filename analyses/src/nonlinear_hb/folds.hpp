@@ -33,4 +33,9 @@ FoldLocation LocateFold(NhbSolver& solver, const VectorX& ya, const VectorX& ta,
 void FindFoldsAndJumps(NhbCurve& curve, const std::vector<double>& steps, double omega_scale,
                        const std::vector<NhbFold>& located = {});
 
+/// Fills curve.jumps from curve.folds and the branch ids of the points (replacing any): a fold
+/// with a stable side is a slow-sweep jump; it lands on the stable crossing of its Ω, on a branch
+/// other than the two meeting at the fold, nearest in RMS (any segment of the curve).
+void FindJumps(NhbCurve& curve);
+
 }  // namespace geardyn::internal

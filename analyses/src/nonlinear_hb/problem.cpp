@@ -105,6 +105,9 @@ bool NhbContinuationOptions::IsValid(std::string* why) const {
     s << "x_scale/omega_scale: must be ≥ 0";
   else if (!(fold_tolerance > 0 && fold_tolerance <= 0.1))
     s << "fold_tolerance: must be in (0, 0.1], got " << fold_tolerance;
+  else if (branch_search < 0 || branch_search > kMaxBranchSearch)
+    s << "branch_search: must be in [0, " << kMaxBranchSearch << "] frequencies (each costs four "
+      << "Newton solves), got " << branch_search;
   else
     return true;
   return Fail(why, s.str());

@@ -136,6 +136,10 @@ MatrixXc NhbSolver::ForceHarmonics(const VectorX& x) {
   return impl_->g_h;
 }
 
+double NhbSolver::LastLawForceNorm() const {
+  return impl_->g_h.size() == 0 ? 0.0 : impl_->g_h.cwiseAbs().maxCoeff();
+}
+
 VectorX NhbSolver::ContactGuess(double omega) {
   Impl& s = *impl_;
   s.UpdateLinear(omega);

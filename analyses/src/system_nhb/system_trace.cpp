@@ -7,7 +7,9 @@
 #include <limits>
 #include <numbers>
 #include <sstream>
+#include <vector>
 
+#include "geardyn/analyses/floquet.hpp"
 #include "geardyn/analyses/modal.hpp"
 #include "geardyn/analyses/system_nonlinear_hb.hpp"
 #include "geardyn/common/check.hpp"
@@ -54,6 +56,54 @@ std::string NameResonantMode(const SystemModel& model, double mesh_hz, int perio
   s << ", met by harmonic " << best_j << " of the " << (period_multiple > 1 ? "base" : "mesh")
     << " frequency (" << best_j * mesh_hz / period_multiple << " Hz; the nonlinear branch's "
     << "frequency differs from the mean-stiffness mode's by the clearance nonlinearity)";
+  return s.str();
+}
+
+/// Why a damped branch grows without bound (NhbCurve::unbounded_branches), checked on the
+/// model: at amplitudes far above the backlash the clearance law acts on both flanks as the
+/// linear time-varying mesh (every slice loaded), whose periodic response is unbounded at the
+/// edges of its parametric instability regions. The Floquet verdict of the linear model on
+/// 2·kScan + 1 frequencies within ±kSpan of the asymptote gives the stability edge nearest to it,
+/// or says none was found.
+std::string ExplainUnboundedBranch(const SystemModel& model, double asymptote_hz) {
+  constexpr int kScan = 12;
+  constexpr double kSpan = 0.03;
+  FloquetOptions fo;
+  fo.tolerance = 1e-8;
+  std::vector<double> f(2 * kScan + 1);
+  std::vector<FloquetResult> r;
+  for (int i = 0; i <= 2 * kScan; ++i) {
+    f[i] = asymptote_hz * (1.0 + kSpan * (i - kScan) / kScan);
+    fo.mesh_frequency_hz = f[i];
+    r.push_back(ComputeFloquet(model, fo));
+  }
+  std::ostringstream s;
+  s << std::setprecision(6);
+  int best = -1;
+  for (int i = 0; i < 2 * kScan; ++i) {
+    const bool a = r[i].verdict == FloquetVerdict::kUnstable;
+    const bool b = r[i + 1].verdict == FloquetVerdict::kUnstable;
+    if (a == b || r[i].verdict == FloquetVerdict::kUndetermined ||
+        r[i + 1].verdict == FloquetVerdict::kUndetermined) {
+      continue;
+    }
+    const double mid = 0.5 * (f[i] + f[i + 1]);
+    if (best < 0 ||
+        std::abs(mid - asymptote_hz) < std::abs(0.5 * (f[best] + f[best + 1]) - asymptote_hz)) {
+      best = i;
+    }
+  }
+  if (best < 0) {
+    s << "the linear time-varying model (every slice loaded) shows no parametric-instability "
+      << "edge within " << 100 * kSpan << " % of it (Floquet on " << 2 * kScan + 1
+      << " frequencies): cause not identified";
+    return s.str();
+  }
+  const int u = r[best].verdict == FloquetVerdict::kUnstable ? best : best + 1;
+  s << "the linear time-varying model (every slice loaded), which the two-flank mesh approaches "
+    << "at amplitudes far above the backlash, has a parametric-instability edge between " << f[best]
+    << " and " << f[best + 1] << " Hz (Floquet: max |lambda| = " << r[u].max_abs_multiplier
+    << " at " << f[u] << " Hz): physics, not a numerical failure";
   return s.str();
 }
 
@@ -115,6 +165,18 @@ SystemNhbCurve TraceSystemNonlinearHb(const SystemModel& model, const SystemNhbO
     out.summary.message += "; " + NameResonantMode(model, curve.undamped_resonance_omega / kTwoPi,
                                                    hb.period_multiple, curve.harmonics_used);
   }
+  {
+    size_t k = 0;
+    for (std::string& w : out.summary.warnings) {
+      if (w.rfind("the branch grows without bound", 0) != 0 ||
+          k >= curve.unbounded_branches.size()) {
+        continue;
+      }
+      const double hz = curve.unbounded_branches[k++][0] / kTwoPi;
+      out.unbounded_branches_hz.push_back(hz);
+      w += "; " + ExplainUnboundedBranch(model, hz);
+    }
+  }
   for (const std::string& w : sp.warnings) out.summary.warnings.push_back(w);
   internal::SystemPointDescriber describer(model, sp, hb, options.compute_element_forces,
                                            options.keep_response);
@@ -137,6 +199,7 @@ SystemNhbCurve TraceSystemNonlinearHb(const SystemModel& model, const SystemNhbO
     sj.mesh_frequency_hz = j.omega / kTwoPi;
     sj.rms_dte_before = j.rms_before;
     sj.rms_dte_after = j.rms_after;
+    sj.rms_dte_landings = j.rms_landings;
     out.jumps.push_back(sj);
   }
   out.summary.wall_time_s =

@@ -12,99 +12,25 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <numbers>
+#include <string>
 #include <variant>
 #include <vector>
 
 #include "geardyn/analyses/system_nonlinear_hb.hpp"
+#include "geardyn/models/scene/scene_reader.hpp"
+#include "geardyn/models/system/scene_system.hpp"
 #include "geardyn/system/mesh_core.hpp"
 #include "geardyn/system/probes.hpp"
 #include "geardyn/system/workspace.hpp"
 #include "kb_rig_fixture.hpp"
 #include "system_time_integration.hpp"
+#include "variational_reference.hpp"
 
 namespace geardyn {
 namespace {
-
-/// GSL right-hand side of [q; q̇; vec Y] (Y column-major, 2N × 2N).
-struct Variational {
-  const SystemModel* model = nullptr;
-  int n = 0;
-  double omega = 1.0;  // mesh frequency [rad/s]; θ = ω t
-  MatrixX Minv, K0, C;
-  std::vector<SliceMeshWorkspace> ws;
-};
-
-int VariationalRhs(double t, const double y[], double dydt[], void* params) {
-  auto* v = static_cast<Variational*>(params);
-  const int n = v->n;
-  const SystemModel& model = *v->model;
-  Eigen::Map<const VectorX> q(y, n), qd(y + n, n);
-  VectorX force = model.constant_load() - v->K0 * q - v->C * qd;
-  MatrixX K = v->K0;  // tangent stiffness K0 + Σ Gᵀ J G
-  for (int k = 0; k < model.num_meshes(); ++k) {
-    const SystemMesh& m = model.meshes()[k];
-    const Vector2 delta = CalcMeshDeflection(model, MeshIndex(k), q);
-    const SliceForce f = EvalSliceForce(std::get<SliceMeshCore>(m.core), v->ws[k],
-                                        m.MeshPhase(v->omega * t), delta(0), delta(1));
-    const Vector12 fp = -m.G.transpose() * f.force;
-    const Matrix12 kp = m.G.transpose() * f.jacobian * m.G;
-    for (int a = 0; a < 12; ++a) {
-      if (m.dofs[a] < 0) continue;
-      force(m.dofs[a]) += fp(a);
-      for (int b = 0; b < 12; ++b) {
-        if (m.dofs[b] >= 0) K(m.dofs[a], m.dofs[b]) += kp(a, b);
-      }
-    }
-  }
-  Eigen::Map<VectorX>(dydt, n) = qd;
-  Eigen::Map<VectorX>(dydt + n, n) = v->Minv * force;
-  const int s = 2 * n;
-  Eigen::Map<const MatrixX> Y(y + s, s, s);
-  Eigen::Map<MatrixX> dY(dydt + s, s, s);
-  dY.topRows(n) = Y.bottomRows(n);
-  dY.bottomRows(n) = -v->Minv * (K * Y.topRows(n) + v->C * Y.bottomRows(n));
-  return GSL_SUCCESS;
-}
-
-/// Multipliers of the orbit through state y0 at θ = 0 over `periods` mesh periods.
-VectorXc ReferenceMultipliers(const SystemModel& model, const VectorX& y0, double mesh_hz,
-                              int periods) {
-  Variational v;
-  v.model = &model;
-  v.n = model.num_dofs();
-  v.omega = 2.0 * std::numbers::pi * mesh_hz;
-  // C̄: the θ-mean of the assembled damping, as in the HB (system_nonlinear_hb.hpp) and in
-  // SystemTimeIntegrator.
-  SystemWorkspace sw(model, StorageKind::kDense);
-  const int samples = 256 * static_cast<int>(model.period_meshes());
-  v.C = MatrixX::Zero(v.n, v.n);
-  for (int s = 0; s < samples; ++s) {
-    v.C += AssembleDamping(
-        model, sw,
-        2.0 * std::numbers::pi * static_cast<double>(model.period_meshes()) * s / samples);
-  }
-  v.C /= samples;
-  v.K0 = model.DenseConstantStiffness();
-  v.Minv = model.DenseMass().inverse();
-  for (const SystemMesh& m : model.meshes()) v.ws.emplace_back(std::get<SliceMeshCore>(m.core));
-  const int s = 2 * v.n;
-  VectorX y(s + s * s);
-  y.head(s) = y0;
-  Eigen::Map<MatrixX>(y.data() + s, s, s).setIdentity();
-  gsl_odeiv2_system sys{&VariationalRhs, nullptr, static_cast<size_t>(y.size()), &v};
-  gsl_odeiv2_driver* d =
-      gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, 1e-9 / v.omega, 1e-11, 1e-11);
-  double t = 0.0;
-  const double T = periods * 2.0 * std::numbers::pi / v.omega;
-  const int status = gsl_odeiv2_driver_apply(d, &t, T, y.data());
-  gsl_odeiv2_driver_free(d);
-  if (status != GSL_SUCCESS) return VectorXc();
-  Eigen::EigenSolver<MatrixX> es(Eigen::Map<MatrixX>(y.data() + s, s, s), false);
-  if (es.info() != Eigen::Success) return VectorXc();
-  return es.eigenvalues();
-}
 
 /// The HB verdict's margin (NhbOptions::stability_margin default): the rig has undamped modes
 /// that the mesh does not damp (|μ| = 1 to round-off, 1 ± 3e-7 measured by both paths), and the
@@ -134,7 +60,8 @@ TEST(SystemNhbMonodromyReference, MultipliersMatchTheGslVariationalEquation) {
   for (size_t i = 0; i < c.points.size(); i += stride) {
     const SystemNhbPoint& p = c.points[i];
     const VectorX y0 = ti.StateFromHarmonics(p.response, p.mesh_frequency_hz, c.period_multiple);
-    const VectorXc mu = ReferenceMultipliers(model, y0, p.mesh_frequency_hz, c.period_multiple);
+    const VectorXc mu =
+        testing::ReferenceMultipliers(model, y0, p.mesh_frequency_hz, c.period_multiple);
     ASSERT_GT(mu.size(), 0) << "GSL failed at " << p.mesh_frequency_hz << " Hz";
     const double reference = mu.cwiseAbs().maxCoeff();
     std::printf("%.3f Hz: HB max|mu| %.8f, GSL %.8f\n", p.mesh_frequency_hz, p.point.max_multiplier,
@@ -148,6 +75,65 @@ TEST(SystemNhbMonodromyReference, MultipliersMatchTheGslVariationalEquation) {
   EXPECT_GE(compared, 4);
   EXPECT_GE(unstable, 1);  // the unstable middle branch is part of the comparison
   EXPECT_GE(stable, 1);
+}
+
+// Issue 13: the rig sweep of the README (700–3 500 Hz, H = 24, ΔΩ per step ≤ 1/200 of the range,
+// stability at the default settings) has short unstable runs on the branches that carry the
+// super-harmonic resonances (e.g. 1 390–1 395 Hz, |μ| up to 1.22). Each run bounded by stable
+// points of its branch is checked against the GSL variational monodromy at its point of largest
+// max|μ| and at the stable points just outside it: the runs are real secondary instabilities
+// of the period-1 orbit (not flicker) when the reference agrees on each verdict.
+TEST(SystemNhbMonodromyReference, ShortUnstableRunsOfTheRigSweepAreReal) {
+  const std::vector<std::string> overrides = {"mesh.pinion-wheel.model=\"slices\"",
+                                              "mesh.pinion-wheel.center_distance=0.1502",
+                                              "mesh.pinion-wheel.damping_ratio=0.05"};
+  const SystemModel model =
+      BuildSceneSystem(LoadScene("builtin:kahraman-blankenship-rig", overrides)).model;
+  SystemNhbOptions o;
+  o.hb.harmonics = 24;  // the CLI's nonlinear default
+  o.start_hz = 700.0;
+  o.end_hz = 3500.0;
+  o.continuation.max_omega_step = 2.0 * std::numbers::pi * (o.end_hz - o.start_hz) / 200;
+  o.compute_element_forces = false;
+  o.keep_response = true;
+  const SystemNhbCurve c = TraceSystemNonlinearHb(model, o);
+  ASSERT_TRUE(c.summary.ok()) << c.summary.BriefReport();
+  testing::SystemTimeIntegrator ti(model);
+  const auto& pts = c.points;
+  auto unstable = [&](size_t i) { return pts[i].point.stable == FloquetVerdict::kUnstable; };
+  int runs = 0;
+  for (size_t i = 1; i + 1 < pts.size(); ++i) {
+    if (!unstable(i) || unstable(i - 1) || pts[i - 1].point.branch != pts[i].point.branch) {
+      continue;
+    }
+    size_t end = i;
+    while (end + 1 < pts.size() && unstable(end + 1)) ++end;
+    if (end + 1 >= pts.size() || pts[end + 1].point.branch != pts[i].point.branch) continue;
+    ++runs;
+    size_t worst = i;
+    for (size_t k = i; k <= end; ++k) {
+      if (pts[k].point.max_multiplier > pts[worst].point.max_multiplier) worst = k;
+    }
+    for (size_t k : {i - 1, worst, end + 1}) {
+      const SystemNhbPoint& p = pts[k];
+      const VectorX y0 = ti.StateFromHarmonics(p.response, p.mesh_frequency_hz, c.period_multiple);
+      const VectorXc mu =
+          testing::ReferenceMultipliers(model, y0, p.mesh_frequency_hz, c.period_multiple);
+      ASSERT_GT(mu.size(), 0) << "GSL failed at " << p.mesh_frequency_hz << " Hz";
+      Eigen::Index top = 0;
+      const double reference = mu.cwiseAbs().maxCoeff(&top);
+      std::printf(
+          "run %d (branch %d, %.3f-%.3f Hz): %.3f Hz HB max|mu| %.8f, GSL %.8f (arg %.4f rad)\n",
+          runs, pts[i].point.branch, pts[i].mesh_frequency_hz, pts[end].mesh_frequency_hz,
+          p.mesh_frequency_hz, p.point.max_multiplier, reference, std::arg(mu[top]));
+      // H = 24 (the CLI default) instead of the 32 above: measured up to 3.2e-3 apart.
+      EXPECT_NEAR(p.point.max_multiplier, reference, 5e-3 * reference) << p.mesh_frequency_hz;
+      EXPECT_EQ(p.point.stable == FloquetVerdict::kStable, reference < 1.0 + kMargin)
+          << p.mesh_frequency_hz << " Hz";
+    }
+    i = end;
+  }
+  EXPECT_GE(runs, 1);
 }
 
 }  // namespace

@@ -95,6 +95,7 @@
 /// harmonic 0; the others are copies shifted by ±ikω) — only for P = I (uncondensed problems).
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
@@ -262,7 +263,11 @@ struct NhbPoint {
   VectorX minimum;            ///< n: min of u (likewise).
   double error_estimate = 0;  ///< RMS of the top quarter of harmonics / RMS (all coordinates).
   double tangent_omega = 0;   ///< dΩ/ds of the continuation tangent (0 for a single solve).
-  int branch = 0;             ///< Branch id: incremented at every fold.
+  int branch = 0;             ///< Branch id: incremented at every fold and every segment.
+  /// 0: the trace from the start of the range; k ≥ 1: the k-th branch found off that trace by
+  /// the branch search (NhbContinuationOptions::branch_search), traced separately — not joined
+  /// to the point before it.
+  int segment = 0;
   /// Three-valued (issue 12): kStable iff max|μ| < 1 + stability_margin, kUnstable iff
   /// max|μ| ≥ 1 + stability_margin, kUndetermined when max|μ| is NaN or ±inf or the point did
   /// not converge (NhbVerdict). kStable when stability was not computed (kNone: the point is not
@@ -319,6 +324,17 @@ struct NhbContinuationOptions {
   /// regula falsi on dΩ/dσ of the bordered system until its estimated error
   /// (NhbFold::omega_error) is ≤ fold_tolerance·|Ω_fold|; in (0, 0.1].
   double fold_tolerance = 1e-8;
+  /// Branch search (issue 13: detached branches and isolas that continuation from the start
+  /// cannot reach): at this many frequencies evenly inside the range, Newton from the
+  /// contact-branch guess with its alternating part scaled by 1, 0.3, 3 and 8; a solution off
+  /// the traced curve (farther than 0.5 % in Ω or 2 % in RMS of coordinate 0 from every traced
+  /// segment) is traced both ways to the ends of the range (or around its loop) and appended as
+  /// a new segment (NhbPoint::segment), and the jumps are found over all segments. 0: off
+  /// (the default of the single-coordinate engine, whose tests measured a 100 s Newton from the
+  /// ×8 guess on the B&K oscillator; the gear-system path turns it on, SystemNhbOptions); at
+  /// most kMaxBranchSearch.
+  int branch_search = 0;
+  static constexpr int kMaxBranchSearch = 1000;
   /// Formats an Ω for messages and warnings in the caller's units (e.g. "mesh frequency
   /// 562.3 Hz" for Ω = 2π f_m); empty: "Omega = <value>" in the problem's units.
   std::function<std::string(double omega)> omega_text;
@@ -348,7 +364,7 @@ struct NhbFold {
 };
 
 /// @brief A jump of a slow sweep: from the stable branch ending at a fold to another stable
-/// branch at the same Ω (the crossing nearest in RMS).
+/// branch at the same Ω (the crossing nearest in RMS; all of them in rms_landings).
 struct NhbJump {
   bool up_sweep = true;     ///< true: seen by an increasing-Ω sweep (fold with Ω maximum).
   double omega = 0.0;       ///< Jump frequency (the fold's Ω).
@@ -356,6 +372,11 @@ struct NhbJump {
   double rms_after = 0.0;   ///< RMS of coordinate 0 on the landing branch (NaN if none).
   double max_before = 0.0;  ///< max of coordinate 0 before the jump.
   double max_after = 0.0;   ///< max of coordinate 0 after the jump (NaN if none).
+  /// RMS of coordinate 0 on every stable branch crossing Ω (other than the two meeting at the
+  /// fold), nearest to rms_before first (rms_after is the first). With more than one, which one
+  /// a sweep lands on is decided by the transient (the basins of attraction), not by the HB:
+  /// on the spur pair with backlash the time integration lands on the farther one.
+  std::vector<double> rms_landings;
 };
 
 /// @brief A traced frequency-response curve.
@@ -367,6 +388,12 @@ struct NhbCurve {
   /// Ω where the trace stopped on a vertical branch (an undamped resonance: the response
   /// doubled within 0.1 % of Ω without a fold; summary.status kNotConverged); 0 when none.
   double undamped_resonance_omega = 0.0;
+  /// Damped branches growing without bound (amplitude ∝ 1/|Ω* − Ω|, e.g. a two-flank branch of
+  /// a clearance law towards a parametric-instability edge of the large-amplitude linear
+  /// system), in the order of their "the branch grows without bound" warnings: the extrapolated
+  /// asymptote Ω* and the Ω where the trace of the branch stopped. The status stays success: the
+  /// branch is traced as far as it exists.
+  std::vector<std::array<double, 2>> unbounded_branches;
   Summary summary;  ///< error_estimate: max point error_estimate; counters: points, newton, folds.
 };
 
@@ -407,6 +434,10 @@ class NhbSolver {
   /// condensed forces [N] (a gear system's f₀ is in torques on the flexible coordinates, but its
   /// residual is in mesh forces: F̃_0 carries the mean mesh force).
   double ResidualTolerance(double omega);
+  /// max_k ‖N_k‖∞ of the law's force harmonics at the x of the last Evaluate [force units]
+  /// (0 before any): the size of the residual's largest term on a large-amplitude branch, where
+  /// ResidualTolerance (set by the excitation) falls below the round-off of R.
+  double LastLawForceNorm() const;
   /// Fills omega, harmonics, mean, rms, peak_to_peak, max, min, error_estimate of `point`.
   void Describe(const VectorX& x, double omega, NhbPoint& point);
   /// Floquet multiplier of largest modulus (method per options).

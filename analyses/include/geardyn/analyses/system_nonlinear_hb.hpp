@@ -83,8 +83,13 @@ struct SystemNhbOptions {
   NhbOptions hb;
   double start_hz = 0.0;  ///< first mesh frequency f_m [Hz] > 0
   double end_hz = 0.0;    ///< last mesh frequency [Hz] > 0, ≠ start_hz
-  /// Continuation steps (omega_start/omega_end are set from start_hz/end_hz).
-  NhbContinuationOptions continuation;
+  /// Continuation steps (omega_start/omega_end are set from start_hz/end_hz). The branch search
+  /// is on by default here (8 frequencies): 32 Newton solves on the condensed problem.
+  NhbContinuationOptions continuation = [] {
+    NhbContinuationOptions c;
+    c.branch_search = 8;
+    return c;
+  }();
   bool compute_element_forces = true;  ///< per-element mean/RMS forces (one solve per harmonic)
   bool keep_response = false;          ///< keep Q_k of q in every point (SystemNhbPoint::response)
   /// False (with the field and reason in `why`) on an invalid value.
@@ -130,6 +135,9 @@ struct SystemNhbJump {
   double mesh_frequency_hz = 0.0;  ///< [Hz]
   double rms_dte_before = 0.0;     ///< RMS DTE of the first mesh before the jump [m]
   double rms_dte_after = 0.0;      ///< after (NaN when no landing branch was traced) [m]
+  /// RMS DTE on every stable branch at the jump frequency, nearest first (NhbJump::
+  /// rms_landings: with several, the transient decides which one a sweep lands on) [m].
+  std::vector<double> rms_dte_landings;
 };
 
 /// @brief The traced frequency-response curve.
@@ -141,7 +149,10 @@ struct SystemNhbCurve {
   std::vector<SystemNhbJump> jumps;
   int harmonics_used = 0;   ///< H
   int period_multiple = 1;  ///< p (base frequency ω_m/p)
-  Summary summary;          ///< engine summary plus the problem's warnings
+  /// Asymptotes [Hz] of branches growing without bound (NhbCurve::unbounded_branches; each
+  /// warning gives the linear model's nearest parametric-instability edge); empty when none.
+  std::vector<double> unbounded_branches_hz;
+  Summary summary;  ///< engine summary plus the problem's warnings
 };
 
 /// @brief Traces the steady-state response over [start_hz, end_hz] (see the @file).
