@@ -49,10 +49,8 @@ std::string StabilityText(const json& stability) {
   if (stability.is_null()) return "";
   const std::string verdict = stability["verdict"].get<std::string>();
   if (verdict != "unstable") return verdict;
-  char text[64];
-  std::snprintf(text, sizeof(text), "unstable (parametric, max|λ| = %.4g)",
-                stability["max_abs_multiplier"].get<double>());
-  return text;
+  return "unstable (parametric, max|λ| = " +
+         FormatMaxAbsMultiplier(stability["max_abs_multiplier"].get<double>()) + ")";
 }
 
 }  // namespace
