@@ -56,7 +56,10 @@ nlohmann::json MakeFloquetReport(const Scene& scene, const std::string& requeste
           {"method_used", ToString(r.method_used)},
           {"max_abs_multiplier", r.max_abs_multiplier},
           {"stability_margin", r.stability_margin},
-          {"stable", r.stable()},
+          // Three-valued like the nonlinear HB's points: null when undetermined, so a script
+          // testing `not stable` cannot read an unknown verdict as "unstable".
+          {"stable", r.verdict == FloquetVerdict::kUndetermined ? nlohmann::json(nullptr)
+                                                                : nlohmann::json(r.stable())},
           {"verdict", ToString(r.verdict)},
           {"marginal", r.marginal},
           {"undamped_modes", undamped},

@@ -46,15 +46,16 @@ json PointStability(const HbStabilitySweep* stability, std::size_t i) {
   return j;
 }
 
-// "unstable (parametric, max|λ| = 1.069)", "stable", "undetermined" or "" (no stability).
+// "unstable (parametric, max|λ| = 1.069)", "stable", "stable, marginal", "undetermined" or ""
+// (no stability). "stable, marginal" (as `geardyn floquet` says it) where the JSON has
+// `marginal: true`: a multiplier on the unit circle within the error estimate (undamped modes).
 std::string StabilityText(const json& stability) {
   if (stability.is_null()) return "";
   const std::string verdict = stability["verdict"].get<std::string>();
+  if (verdict == "stable" && stability.value("marginal", false)) return "stable, marginal";
   if (verdict != "unstable") return verdict;
-  char text[64];
-  std::snprintf(text, sizeof(text), "unstable (parametric, max|λ| = %.4g)",
-                stability["max_abs_multiplier"].get<double>());
-  return text;
+  return "unstable (parametric, max|λ| = " +
+         FormatMaxAbsMultiplier(stability["max_abs_multiplier"].get<double>()) + ")";
 }
 
 }  // namespace
@@ -265,7 +266,7 @@ std::string FormatHbText(const json& report) {
     const auto& p = points[i];
     const std::string stability = StabilityText(p.value("stability", json(nullptr)));
     // Every unstable or undetermined point is listed, whatever the stride.
-    const bool flagged = !stability.empty() && stability != "stable";
+    const bool flagged = !stability.empty() && stability.rfind("stable", 0) != 0;
     if (i % stride != 0 && !flagged) continue;
     for (const auto& m : p["meshes"]) {
       std::snprintf(line, sizeof(line), "%12.2f %4d  %-24s %12.5g %12.5g %12.5g%s%s%s\n",

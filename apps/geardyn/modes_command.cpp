@@ -1,6 +1,7 @@
 // `geardyn modes SCENE`: the modes of the scene's mean (LTI) system (ComputeModes on
 // MakeSystemModel), printed as a mode-type table or JSON, and written to --out as modes.json,
 // modes.csv and (with --shapes) mode_shapes.csv.
+#include <cstddef>
 #include <memory>
 
 #include "geardyn/analyses/modal.hpp"
@@ -30,7 +31,12 @@ int RunModes(const ModesCommandOptions& opts, std::ostream& out) {
   const SceneSystem built = BuildSceneSystem(scene, system_options);
   const int n = built.model.num_dofs();
   const ModalOptions options = MakeModesOptions(opts.settings, n);
-  const ModalResult result = ComputeModes(built.model, options);
+  ModalResult result = ComputeModes(built.model, options);
+  // --modes N applies to the damped modes too: the dense state-space solve gives all of them
+  // (geared-shafts --modes 8 --damped listed 108). Both lists are sorted by natural frequency
+  // (rigid-body modes first), so the first N damped modes sit beside the N undamped ones.
+  const auto wanted = static_cast<std::size_t>(opts.settings.num_modes);
+  if (result.damped_modes.size() > wanted) result.damped_modes.resize(wanted);
   nlohmann::json report = MakeModesReport(scene.source, n, result, built.warnings);
   GroupShaftStrain(scene, &report);
   const std::string json_text = report.dump(2) + "\n";
@@ -63,7 +69,8 @@ Command AddModesCommand(CLI::App& app) {
   cmd->add_flag("--shapes", opts->settings.shapes,
                 "include the mode shapes (JSON; mode_shapes.csv with --out)");
   cmd->add_flag("--damped", opts->settings.damped,
-                "also compute the damped complex modes (frequency, damping ratio)");
+                "also compute the damped complex modes (frequency, damping ratio; the --modes "
+                "lowest by natural frequency)");
   return {cmd, [opts](std::ostream& out) { return RunModes(*opts, out); }};
 }
 

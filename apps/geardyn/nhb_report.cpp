@@ -80,7 +80,11 @@ json MakeNhbReport(const std::string& scene_source, const NhbRunInfo& info,
                       ? json(nullptr)
                       : json(r.point.stable == FloquetVerdict::kStable);
     p["verdict"] = computed ? ToString(r.point.stable) : "not computed";
-    p["max_multiplier"] = computed ? Finite(r.point.max_multiplier) : json(nullptr);
+    // max|μ| = 0 means "not computed" (NhbPoint: a failed point gets no monodromy); a real
+    // monodromy has det Φ = exp(−∫tr M⁻¹C dt) > 0 (Liouville), so max|μ| > 0. It printed
+    // "0.000000" next to "undetermined".
+    p["max_multiplier"] =
+        computed && r.point.max_multiplier != 0.0 ? Finite(r.point.max_multiplier) : json(nullptr);
     p["error_estimate"] = computed ? Finite(r.point.error_estimate) : json(nullptr);
     p["status"] = StatusName(r.point.status);
     json meshes = json::array();
@@ -157,8 +161,11 @@ std::string FormatNhbCsv(const SystemNhbCurve& curve, bool stability_computed) {
            : r.point.stable == FloquetVerdict::kStable   ? "1"
            : r.point.stable == FloquetVerdict::kUnstable ? "0"
                                                          : "nan")
-       << "," << (stability_computed ? Num(r.point.max_multiplier) : std::string()) << ","
-       << (stability_computed ? Num(r.point.error_estimate) : std::string()) << ","
+       << ","
+       << (!stability_computed             ? std::string()
+           : r.point.max_multiplier == 0.0 ? Num(kNaN)  // not computed at a failed point
+                                           : Num(r.point.max_multiplier))
+       << "," << (stability_computed ? Num(r.point.error_estimate) : std::string()) << ","
        << StatusName(r.point.status);
     for (const SystemNhbMeshOutput& m : r.meshes) {
       os << "," << Num(m.rms_dte) << "," << Num(m.peak_to_peak_dte) << "," << Num(m.mean_dte);

@@ -107,8 +107,15 @@ std::string PointsCsv(const StabilityChartResult& c) {
       const int i = c.index(ix, iy);
       const int r = c.region[i];
       s << c.x_axis.Value(ix) << "," << c.y_axis.Value(iy) << "," << c.mesh_frequency_hz[i] << ","
-        << c.max_abs_multiplier[i] << "," << c.error_estimate[i] << "," << int{c.stable[i]} << ","
-        << int{c.ok[i]} << "," << r << "," << (r >= 0 ? RegionLabel(c.regions[r]) : "") << "\n";
+        << c.max_abs_multiplier[i] << "," << c.error_estimate[i]
+        << ","
+        // 1/0/nan as the hb CSVs (design.md "Three-valued verdict"): an undetermined point's
+        // `stable` is not 0 (it read as unstable; only `ok` showed the failure).
+        << (!c.ok[i]      ? "nan"
+            : c.stable[i] ? "1"
+                          : "0")
+        << "," << int{c.ok[i]} << "," << r << "," << (r >= 0 ? RegionLabel(c.regions[r]) : "")
+        << "\n";
     }
   }
   return s.str();

@@ -248,6 +248,43 @@ TEST(HbNonlinearCommandTest, StabilityNonePrintsNoVerdict) {
   }
 }
 
+// A runout makes the period the hunting period, P = lcm(50, 50) = 50 mesh cycles on the rig, and
+// H counts harmonics of f_mesh/P: the default H = 24 has no mesh harmonic at all. It returned the
+// runout alone (a1 = 5 µm, RMS 3.54 µm = 5/√2 µm, no contact loss) with status success; it must
+// be refused before any solve, naming the period (closed form: lcm of the tooth counts).
+TEST(HbNonlinearCommandTest, ToothErrorsNeedHarmonicsReachingTheMeshFrequency) {
+  for (const std::vector<std::string>& head :
+       {std::vector<std::string>{"--mesh-frequency", "1800"},
+        std::vector<std::string>{"--mesh-frequency", "1800", "--harmonics", "49"},
+        std::vector<std::string>{"--mesh-frequency", "1800:1900:4", "--tolerance", "1e-3"}}) {
+    std::vector<std::string> args = SliceRig(head);
+    args.insert(args.end(), {"--set", "mesh.pinion-wheel.errors.gear_runout=5e-6"});
+    const CliRun run = RunGeardyn(args);
+    EXPECT_EQ(run.code, kExitBadInput) << run.out;
+    EXPECT_NE(run.err.find("harmonics of f_mesh/50"), std::string::npos) << run.err;
+    EXPECT_NE(run.err.find("does not contain the mesh frequency (harmonic 50)"), std::string::npos)
+        << run.err;
+  }
+}
+
+// A point whose Newton solve fails gets no monodromy: its max|μ| is unknown, not 0 (a computed
+// monodromy has det Φ = exp(−∫tr M⁻¹C dt) > 0 by Liouville, so max|μ| > 0). The rig with a
+// runout at H = P = 50 (one mesh order) does not converge at 1800 Hz and printed max|μ| 0.000000
+// beside "undetermined".
+TEST(HbNonlinearCommandTest, FailedPointCarriesNoMultiplier) {
+  std::vector<std::string> args = SliceRig({"--mesh-frequency", "1800", "--harmonics", "50"});
+  args.insert(args.end(), {"--set", "mesh.pinion-wheel.errors.gear_runout=5e-6", "--json"});
+  const CliRun run = RunGeardyn(args);
+  const json report = json::parse(run.out);
+  ASSERT_EQ(report["points"].size(), 1u);
+  const json& p = report["points"][0];
+  if (p["status"] == "success") GTEST_SKIP() << "the point converged; nothing to check";
+  EXPECT_EQ(run.code, kExitNumericalIssue);
+  EXPECT_EQ(p["verdict"], "undetermined");
+  EXPECT_TRUE(p["stable"].is_null());
+  EXPECT_TRUE(p["max_multiplier"].is_null()) << p["max_multiplier"];
+}
+
 TEST(HbNonlinearCommandTest, SliceRigMonodromyIsExactWhateverTheSteps) {
   // The trace over the super-harmonic fold (≈ 1 475 Hz) returns along the unstable branch
   // (|μ| up to ≈ 3). The spur slice law is integrated exactly (its projected form): ∂g/∂u is

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "geardyn/analyses/floquet.hpp"
 #include "geardyn/cli.hpp"
@@ -93,6 +95,28 @@ TEST(HbStabilityCommandTest, TextCsvAndPlotMarkTheUnstablePoint) {
   svg << std::ifstream(dir / "hb_rms_dte.svg").rdbuf();
   EXPECT_NE(svg.str().find("stroke-dasharray"), std::string::npos);
   EXPECT_NE(svg.str().find("parametrically unstable"), std::string::npos);
+}
+
+// Issue 12 (tryout): the text table said "stable" where the JSON said `marginal: true`. Truth:
+// the rig has no damping (C = 0), so det Φ = exp(−∫tr M⁻¹C dt) = 1 (Liouville) and a stable
+// monodromy has every |λ| = 1: its verdict is marginal. The text says "stable, marginal" as
+// `geardyn floquet` does; with 10 % modal damping (|λ| < 1) it says "stable" alone.
+TEST(HbStabilityCommandTest, UndampedStablePointReadsMarginalInTheText) {
+  const std::vector<std::string> args = {"hb",   kRig,          "--mesh-frequency",
+                                         "2000", "--harmonics", "8"};
+  const nlohmann::json report = RunJson(args);
+  const auto& s = report["points"][0]["stability"];
+  ASSERT_EQ(s["verdict"], "stable");
+  EXPECT_TRUE(s["marginal"].get<bool>());
+  const CliRun run = RunGeardyn(args);
+  ASSERT_EQ(run.code, kExitOk) << run.err;
+  EXPECT_NE(run.out.find("stable, marginal"), std::string::npos) << run.out;
+
+  const CliRun damped = RunGeardyn({"hb", kRig, "--mesh-frequency", "3290", "--harmonics", "8",
+                                    "--set", "damping.modal_ratio=0.1"});
+  ASSERT_EQ(damped.code, kExitOk) << damped.err;
+  EXPECT_NE(damped.out.find("  stable"), std::string::npos) << damped.out;
+  EXPECT_EQ(damped.out.find("marginal"), std::string::npos) << damped.out;
 }
 
 TEST(HbStabilityCommandTest, StabilityNoneSkipsTheVerdicts) {

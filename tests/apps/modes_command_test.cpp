@@ -4,12 +4,14 @@
 // files of --out, and bad options (exit 2 with a message naming the option).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <vector>
 
 #include "geardyn/analyses/modal.hpp"
 #include "geardyn/cli.hpp"
@@ -131,6 +133,40 @@ TEST(ModesCommandTest, JsonHasTheDocumentedFields) {
     EXPECT_NEAR(d["damping_ratio"].get<double>(), 0.0, 1e-9);
   }
   EXPECT_EQ(r["shapes"].size(), 12u);
+}
+
+// Issue 12 (tryout): --modes N limits the damped modes too (geared-shafts, 108 DOFs, listed all
+// 108 with --modes 8), and a mode the damping does not reach reads ζ = 0, not round-off
+// (−1.7e-16). Truth, closed form of modal damping C = M Φ diag(2ζ_r ω_r) Φᵀ M: every mode keeps
+// its undamped ω_n and takes ζ_r, the r-th flexible one from modal_ratios and the rest
+// modal_ratio = 0 (λ = ±iω_n, ζ = 0 exactly).
+TEST(ModesCommandTest, DampedModesFollowModesAndUndampedOnesReadZero) {
+  const std::vector<double> ratios = {0.05, 0.03};
+  const nlohmann::json r =
+      RunJson({"modes", "builtin:geared-shafts", "--modes", "8", "--damped", "--set",
+               "damping.modal_ratios=[0.05, 0.03]", "--set", "damping.modal_ratio=0"});
+  ASSERT_EQ(r["status"], "success");
+  ASSERT_EQ(r["modes"].size(), 8u);
+  ASSERT_GT(r["num_dofs"].get<int>(), 8);
+  ASSERT_EQ(r["damped_modes"].size(), 8u);
+  std::size_t flexible = 0;
+  for (std::size_t k = 0; k < 8; ++k) {
+    const double f = r["frequencies_hz"][k].get<double>();
+    const nlohmann::json& d = r["damped_modes"][k];
+    EXPECT_NEAR(d["natural_frequency_hz"].get<double>(), f, 1e-9 * std::max(f, 1.0)) << k;
+    if (f == 0.0) continue;  // the rigid-body mode
+    const double zeta = flexible < ratios.size() ? ratios[flexible] : 0.0;
+    ++flexible;
+    if (zeta == 0.0) {
+      EXPECT_EQ(d["damping_ratio"].get<double>(), 0.0) << "mode " << k;
+      EXPECT_EQ(d["frequency_hz"].get<double>(), d["natural_frequency_hz"].get<double>()) << k;
+      EXPECT_EQ(r["modes"][k]["modal_damping_ratio"].get<double>(), 0.0) << "mode " << k;
+    } else {
+      EXPECT_NEAR(d["damping_ratio"].get<double>(), zeta, 1e-9) << "mode " << k;
+      EXPECT_NEAR(r["modes"][k]["modal_damping_ratio"].get<double>(), zeta, 1e-9) << k;
+    }
+  }
+  EXPECT_EQ(flexible, 7u);
 }
 
 TEST(ModesCommandTest, OutWritesJsonCsvAndShapes) {

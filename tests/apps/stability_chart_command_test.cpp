@@ -380,6 +380,41 @@ TEST(StabilityChartCommand, MathieuSceneTongueMatchesTheDampedMathieuEquation) {
   EXPECT_GE(rows_with_tongue, 2);
 }
 
+// Issue 12 (tryout): a point without a verdict wrote stable = 0 (read as unstable; only `ok`
+// showed the failure). Magnus cannot meet a 1e-15 tolerance on this undamped pair, so its points
+// are undetermined. Truth: the chart's own failure flag (ok = 0) and the JSON count of
+// undetermined points: each such row's `stable` is "nan", as in the hb CSVs (1/0/nan), and no
+// row with ok = 0 claims 0 or 1.
+TEST(StabilityChartCommand, UndeterminedPointsWriteNanNotUnstable) {
+  const std::filesystem::path dir = OutDir("stability_chart_undetermined");
+  const CliRun run = RunGeardyn(
+      {"stability-chart", kPair, "--set", kFourierMesh, "--set",
+       "mesh.pinion-wheel.model=\"torsional\"", "--x", std::string(kSpeed) + "=5000:40000:2", "--y",
+       std::string(kVariation) + "=1e8:1.2e8:2", "--method", "magnus", "--tolerance", "1e-15",
+       "--no-curves", "--quiet", "--out", dir.string()});
+  ASSERT_EQ(run.code, 1) << run.err;  // kExitNumericalIssue: the chart has undetermined points
+  std::stringstream json;
+  json << std::ifstream(dir / "stability_chart.json").rdbuf();
+  const long undetermined = nlohmann::json::parse(json.str())["num_undetermined_points"];
+  ASSERT_GT(undetermined, 0);
+  std::ifstream csv(dir / "stability_chart.csv");
+  std::string line;
+  std::getline(csv, line);
+  long nan_rows = 0;
+  while (std::getline(csv, line)) {
+    std::stringstream row(line);
+    std::string f[7];
+    for (std::string& v : f) std::getline(row, v, ',');
+    if (f[6] == "0") {
+      EXPECT_EQ(f[5], "nan") << line;
+      ++nan_rows;
+    } else {
+      EXPECT_TRUE(f[5] == "0" || f[5] == "1") << line;
+    }
+  }
+  EXPECT_EQ(nan_rows, undetermined);
+}
+
 TEST(StabilityChartCommand, ReadmeChartLabelsDoNotOverlap) {
   // The README's chart (80 × 24 points): region labels and resonance-marker labels read back
   // from the SVG; their rendered boxes (textLength fixes the width) must not intersect.

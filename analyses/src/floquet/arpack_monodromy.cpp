@@ -112,7 +112,7 @@ Propagator PiecewisePropagator(const StateSystem& sys, int ncv) {
   p.dim = sys.dim;
   p.steps = d;
   p.evaluations = d;
-  p.num_factors = static_cast<double>(d) * static_cast<double>(power);
+  p.num_factors = StepProductFactors(merged, d) * static_cast<double>(power);
   const double n = sys.dim;
   if (power > 1) {
     ScaledMatrix cycle{MatrixX::Identity(sys.dim, sys.dim), 0.0};

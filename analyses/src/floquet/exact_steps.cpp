@@ -37,6 +37,14 @@ MergedSteps MergeEqualSteps(const StateSystem& sys) {
   return m;
 }
 
+double StepProductFactors(const MergedSteps& merged, int d) {
+  double factors = d;
+  for (int k = 0; k < d; ++k) {
+    factors += merged.A[k]->cwiseAbs().colwise().sum().maxCoeff() * merged.dt[k];
+  }
+  return factors;
+}
+
 MonodromyOutcome ExactStepsMonodromy(const StateSystem& sys) {
   GEARDYN_THROW_UNLESS(!sys.step_matrices.empty(),
                        "method: exact_steps needs piecewise-constant coefficients (steps)");
@@ -56,7 +64,7 @@ MonodromyOutcome ExactStepsMonodromy(const StateSystem& sys) {
   out.phi = power == 1 ? cycle : ScaledPower(cycle, power, &products);
   out.steps = d;
   out.evaluations = d;
-  out.num_factors = static_cast<double>(d) * static_cast<double>(power);
+  out.num_factors = StepProductFactors(merged, d) * static_cast<double>(power);
   return out;
 }
 

@@ -137,6 +137,12 @@ struct MergedSteps {
   std::vector<int> index;
 };
 MergedSteps MergeEqualSteps(const StateSystem& sys);
+/// @brief Round-off of the step product Π_{k<d} expm(A_k Δt_k), in units of ε‖Φ‖ (the num_factors
+/// of SpectrumOf): d products plus Σ_k ‖A_k Δt_k‖₁, since scaling and squaring loses about
+/// ε‖AΔt‖ per exponential (2^s squarings with ‖AΔt‖/2^s ≈ 5.4). At low speed ‖A‖T reaches 10⁵–10⁶
+/// and that term dominates (issue 12: the rig at f_m = 0.2 Hz read max|λ| = 1 + 6e-12 against an
+/// estimate of 1.5e-13 and said "unstable"; the extended-precision product gives 1 + 1e-14).
+double StepProductFactors(const MergedSteps& merged, int d);
 
 /// @brief kExactSteps: Π expm(A_k Δt_k), consecutive equal steps merged, a repeating pattern
 /// raised to its power by squaring.

@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iomanip>
 #include <limits>
 #include <numeric>
@@ -238,6 +239,17 @@ const char* ToString(FloquetVerdict verdict) {
       return "undetermined";
   }
   return "unknown";
+}
+
+std::string FormatMaxAbsMultiplier(double max_abs) {
+  char text[48];
+  const double growth = max_abs - 1.0;
+  if (std::isfinite(max_abs) && growth != 0.0 && std::abs(growth) < 5e-4) {
+    std::snprintf(text, sizeof(text), "1 %s %.2g", growth > 0.0 ? "+" : "−", std::abs(growth));
+  } else {
+    std::snprintf(text, sizeof(text), "%.4g", max_abs);
+  }
+  return text;
 }
 
 }  // namespace geardyn

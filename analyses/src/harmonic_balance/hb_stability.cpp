@@ -95,7 +95,8 @@ HbStabilitySweep ComputeHbStability(const SystemModel& model,
                                             : "f_m = " + Hz(r.lo_hz) + " … " + Hz(r.hi_hz) +
                                                   " Hz (" + std::to_string(r.points) + " points)";
     sweep.summary.warnings.push_back(
-        "parametrically unstable at " + where + ", max|λ| up to " + Hz(r.max_abs_multiplier) +
+        "parametrically unstable at " + where + ", max|λ| up to " +
+        FormatMaxAbsMultiplier(r.max_abs_multiplier) +
         ": the periodic solution there is not a response the system settles to (Floquet "
         "multipliers of M q'' + C q' + K(θ) q = 0 outside the unit circle)");
   }

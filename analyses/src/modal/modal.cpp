@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <utility>
 #include <variant>
@@ -293,8 +294,14 @@ ModalResult ComputeModes(const SystemModel& model, const ModalOptions& options) 
     for (Eigen::Index k = 0; k < m; ++k) {
       const double omega = std::sqrt(std::max(result.eigenvalues(k), 0.0));
       if (omega > 0.0) {
-        result.modal_damping_ratios(k) =
-            eig.vectors.col(k).dot(sys.C * eig.vectors.col(k)) / (2.0 * omega);
+        // φᵀCφ of a mode C does not damp (a mode beyond a scene's modal_ratios) is round-off:
+        // read −1.7e-16 on geared-shafts. Below the rounding bound of the quadratic form,
+        // γ_n |φ|ᵀ|C||φ| (Higham, Accuracy and Stability, §3.1; taken as 4nε), it is 0.
+        const VectorX phi_abs = eig.vectors.col(k).cwiseAbs();
+        const double bound = 4.0 * n * std::numeric_limits<double>::epsilon() *
+                             phi_abs.dot(sys.C.cwiseAbs() * phi_abs);
+        const double q = eig.vectors.col(k).dot(sys.C * eig.vectors.col(k));
+        result.modal_damping_ratios(k) = std::abs(q) <= bound ? 0.0 : q / (2.0 * omega);
       }
     }
   }

@@ -3,6 +3,7 @@
 /// engine of nonlinear_hb.hpp on MakeSystemNhbProblem, outputs by SystemPointDescriber.
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <iomanip>
 #include <limits>
 #include <numbers>
@@ -112,6 +113,25 @@ void CheckOptions(const SystemNhbOptions& options) {
   GEARDYN_THROW_UNLESS(options.IsValid(&why), "nonlinear harmonic balance options: " << why);
 }
 
+/// With tooth errors the period is P = period_meshes mesh cycles and H counts harmonics of
+/// ω_m/(p·P), so the mesh frequency is harmonic p·P: an H below it leaves the mesh excitation out
+/// of the basis and returns the errors' low harmonics alone with status success (issue 12: the
+/// rig with a 5 µm runout, P = 50, default H = 24). The H = 0 tolerance loop starts at H = 4 or 8
+/// and may stop there for the same reason, so it is refused too.
+void CheckHarmonicsContainTheMesh(const NhbOptions& hb, int period_meshes) {
+  if (period_meshes <= 1) return;
+  const std::int64_t mesh_harmonic =
+      static_cast<std::int64_t>(hb.period_multiple) * static_cast<std::int64_t>(period_meshes);
+  GEARDYN_THROW_UNLESS(
+      hb.harmonics >= mesh_harmonic,
+      "hb.harmonics: H = " << hb.harmonics << (hb.harmonics == 0 ? " (chosen by tolerance)" : "")
+                           << " is below the mesh harmonic " << mesh_harmonic
+                           << ": the tooth errors repeat every P = " << period_meshes
+                           << " mesh cycles, H counts harmonics of f_mesh/" << mesh_harmonic
+                           << ", and the mesh frequency would not be in the basis; give H = k·"
+                           << mesh_harmonic << " for k mesh orders");
+}
+
 }  // namespace
 
 bool SystemNhbOptions::IsValid(std::string* why) const {
@@ -138,6 +158,7 @@ SystemNhbCurve TraceSystemNonlinearHb(const SystemModel& model, const SystemNhbO
   const auto start = std::chrono::steady_clock::now();
   CheckOptions(options);
   const SystemNhbProblem sp = MakeSystemNhbProblem(model);
+  CheckHarmonicsContainTheMesh(options.hb, sp.period_meshes);
   NhbOptions hb = options.hb;
   hb.period_multiple *= sp.period_meshes;
   NhbContinuationOptions c = options.continuation;
@@ -214,6 +235,7 @@ SystemNhbPoint SolveSystemNonlinearHb(const SystemModel& model, double mesh_freq
   std::string why;
   GEARDYN_THROW_UNLESS(options.hb.IsValid(&why), "nonlinear harmonic balance options: hb." << why);
   const SystemNhbProblem sp = MakeSystemNhbProblem(model);
+  CheckHarmonicsContainTheMesh(options.hb, sp.period_meshes);
   NhbOptions hb = options.hb;
   hb.period_multiple *= sp.period_meshes;
   const NhbSolveResult r =

@@ -78,6 +78,41 @@ LinearMeshCore MakeUserCore(const MeshDef& mesh) {
   return model.level == MeshModelLevel::kMeanLti ? MakeMeanLinearMeshCore(core) : core;
 }
 
+// The coefficient keys the scene gave that cannot change the core (they were silently ignored):
+// fourier_terms / fourier_tolerance when coefficient_form = "auto" stores the exact steps of a
+// spur mesh (MakeMeshCoefficient, MakeSliceMeshCore: the steps come before any series), and
+// table_samples when nothing is sampled: no transmission error (its table is the only sampled
+// coefficient of the Fourier, auto and piecewise-constant forms) and neither the "table" form of
+// a linear mesh nor the sampled stiffness of slices that are not exact steps.
+std::vector<std::string> UnusedCoefficientKeys(const MeshModelDef& model,
+                                               const ContactLineModel& lines) {
+  std::vector<std::string> out;
+  const MeshCoefficientForm form = model.core_options.coefficient.form;
+  const bool slices = model.level == MeshModelLevel::kNonlinearSlices;
+  const bool exact_steps =
+      lines.is_piecewise_constant() &&
+      (form == MeshCoefficientForm::kAuto || form == MeshCoefficientForm::kPiecewiseConstant);
+  if (model.fourier_keys_given && form == MeshCoefficientForm::kAuto && exact_steps) {
+    out.push_back(
+        "fourier_terms/fourier_tolerance have no effect: coefficient_form = \"auto\" stores the "
+        "exact stiffness steps of this spur mesh, not a Fourier series (give coefficient_form = "
+        "\"fourier\" for a truncated series)");
+  }
+  const bool te = internal::HasUnloadedSeparation(model.modifications, model.errors);
+  const bool sampled = te || (slices ? !exact_steps : form == MeshCoefficientForm::kTable);
+  if (model.table_samples_given && !sampled) {
+    out.push_back(
+        std::string("table_samples has no effect: the mesh has no transmission error (no tooth "
+                    "modifications or errors) and coefficient_form = \"") +
+        (form == MeshCoefficientForm::kAuto      ? "auto"
+         : form == MeshCoefficientForm::kFourier ? "fourier"
+                                                 : "piecewise_constant") +
+        "\" does not sample the stiffness" + (slices ? " of these slices (exact steps)" : "") +
+        " (give coefficient_form = \"table\" for a sampled stiffness)");
+  }
+  return out;
+}
+
 // ε(θ) from the modifications and errors on the contact lines (none when they are all zero): a
 // table (or its Fourier series) over the hunting period, bounded by kMaxTransmissionErrorSamples
 // samples; or, for a runout on a linear level without pitch deviations (RunoutForm), the table of
@@ -241,6 +276,9 @@ BuiltMeshCore BuildMeshCore(const Scene& scene, const MeshDef& mesh, bool transm
 
   MeshCoreOptions options = model.core_options;
   options.level = model.level;
+  for (const std::string& w : UnusedCoefficientKeys(model, source.contact_lines)) {
+    warnings.push_back("mesh." + mesh.name + ": " + w);
+  }
   MeshCore core = MakeMeshCore(source, options);
   return {std::move(core), std::move(source.contact_lines), drive_sign, std::move(warnings)};
 }

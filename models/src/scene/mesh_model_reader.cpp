@@ -145,8 +145,10 @@ MeshModelDef ReadMeshModel(const Fields& f, const GearDef& pinion, const GearDef
       f.Fail("fourier_tolerance", "must be > 0 and < 1, got " + FormatNumber(tolerance->value));
     }
   }
-  const int samples =
-      f.OptInt("table_samples", 1, kMaxTableSamples).value_or(options.coefficient.num_samples);
+  const std::optional<int> given_samples = f.OptInt("table_samples", 1, kMaxTableSamples);
+  const int samples = given_samples.value_or(options.coefficient.num_samples);
+  def.fourier_keys_given = terms.has_value() || tolerance.has_value();
+  def.table_samples_given = given_samples.has_value();
   options.coefficient.form = form;
   options.coefficient.num_terms = terms.value_or(0);
   if (tolerance) options.coefficient.rel_tol = tolerance->value;

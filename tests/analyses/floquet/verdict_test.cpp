@@ -179,5 +179,31 @@ TEST(FloquetVerdictTest, UndampedStableIsMarginalDampedIsNot) {
   EXPECT_NEAR(damped.max_abs_multiplier, std::exp(-0.5 * c * T), 1e-12);
 }
 
+// What the reports print next to a verdict (hb text "unstable (parametric, max|λ| = …)", its
+// warnings): the helical pair at 2689.68 Hz has max|λ| = 1.00035 and printed "max|λ| = 1" beside
+// "unstable". Truth: the printed text read back equals the value to its printed digits and, for
+// any growth, reads above 1.
+TEST(FloquetVerdictTest, PrintedMaxAbsMultiplierReadsBackAboveOneForEveryGrowth) {
+  for (const double m :
+       {1.0 + 6.4e-12, 1.0 + 3.5e-4, 1.0 + 4.9e-4, 1.0 - 2e-6, 1.0, 1.069, 0.934}) {
+    SCOPED_TRACE(m);
+    const std::string text = FormatMaxAbsMultiplier(m);
+    double read = 0.0;
+    if (text.rfind("1 + ", 0) == 0) {
+      read = 1.0 + std::stod(text.substr(4));
+    } else if (text.rfind("1 − ", 0) == 0) {
+      read = 1.0 - std::stod(text.substr(std::string("1 − ").size()));
+    } else {
+      read = std::stod(text);
+    }
+    EXPECT_NEAR(read - 1.0, m - 1.0, 0.01 * std::abs(m - 1.0) + 1e-4 * (std::abs(m - 1.0) >= 5e-4))
+        << text;
+    EXPECT_EQ(read > 1.0, m > 1.0) << text;
+    EXPECT_EQ(read < 1.0, m < 1.0) << text;
+  }
+  EXPECT_EQ(FormatMaxAbsMultiplier(kNaN), "nan");
+  EXPECT_EQ(FormatMaxAbsMultiplier(kInf), "inf");
+}
+
 }  // namespace
 }  // namespace geardyn::test

@@ -8,11 +8,15 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "analyses/system_nhb/kb_rig_fixture.hpp"
 #include "geardyn/analyses/harmonic_balance.hpp"
 #include "geardyn/analyses/system_nonlinear_hb.hpp"
 #include "geardyn/common/errors.hpp"
+#include "geardyn/models/scene/scene_reader.hpp"
+#include "geardyn/models/system/scene_system.hpp"
 #include "geardyn/system/workspace.hpp"
 #include "support/expect_throws.hpp"
 
@@ -176,6 +180,40 @@ TEST(SystemNonlinearHb, RejectsBadOptionsNamingTheField) {
   EXPECT_THROWS_MESSAGE(TraceSystemNonlinearHb(model, o), InvalidInput, "samples_per_harmonic");
   EXPECT_THROWS_MESSAGE(SolveSystemNonlinearHb(model, std::nan(""), Options(8)), InvalidInput,
                         "mesh_frequency_hz");
+}
+
+// Issue 12 (tryout): with a wheel runout the errors repeat once per wheel turn, P = z_wheel = 50
+// mesh cycles, and H counts harmonics of f_mesh/50: the mesh frequency is harmonic 50. The library
+// accepted H = 24 (mesh frequency outside the basis, the runout alone, status success); only the
+// CLI refused it. H < P and the tolerance loop (H = 0) are refused with H and P named; H = P is
+// accepted.
+TEST(SystemNonlinearHb, RefusesHarmonicsBelowTheHuntingPeriodOfTheToothErrors) {
+  const std::vector<std::string> overrides = {"mesh.pinion-wheel.model=\"slices\"",
+                                              "mesh.pinion-wheel.slices=10",
+                                              "mesh.pinion-wheel.center_distance=0.1502",
+                                              "mesh.pinion-wheel.damping_ratio=0.05",
+                                              "operating_point.torque=100",
+                                              "load.brake.torque=100",
+                                              "mesh.pinion-wheel.errors.gear_runout=5e-6"};
+  const SystemModel model =
+      BuildSceneSystem(LoadScene("builtin:kahraman-blankenship-rig", overrides)).model;
+  const int wheel_teeth = 50;  // examples/scenes/kahraman-blankenship-rig.toml
+  ASSERT_EQ(model.period_meshes(), wheel_teeth);
+  EXPECT_THROWS_MESSAGE(SolveSystemNonlinearHb(model, 1800.0, Options(24)), InvalidInput,
+                        "H = 24 is below the mesh harmonic 50");
+  EXPECT_THROWS_MESSAGE(SolveSystemNonlinearHb(model, 1800.0, Options(49)), InvalidInput, "P = 50");
+  EXPECT_THROWS_MESSAGE(SolveSystemNonlinearHb(model, 1800.0, Options(0)), InvalidInput,
+                        "hb.harmonics: H = 0");
+  SystemNhbOptions sweep = Options(24);
+  sweep.start_hz = 1800.0;
+  sweep.end_hz = 1900.0;
+  EXPECT_THROWS_MESSAGE(TraceSystemNonlinearHb(model, sweep), InvalidInput, "hb.harmonics");
+
+  // H = P holds the mesh frequency and is accepted. (Whether the single solve from the
+  // contact-branch guess converges is another matter: with this runout it does not at 1000 or
+  // 1800 Hz, reported as a failed status, see hb_nonlinear_command_test.)
+  Summary summary;
+  EXPECT_NO_THROW(SolveSystemNonlinearHb(model, 1000.0, Options(wheel_teeth), &summary));
 }
 
 }  // namespace

@@ -8,8 +8,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -161,6 +163,45 @@ TEST(ToothModificationsTest, PitchDeviationsGiveMeanFreeFlankLags) {
     const double expected = cb * (e.pinion_flank_lags()[i1] - gear[i2] * kUm);
     EXPECT_NEAR(e.ToothPairSeparation(n), expected, kTol) << "cycle " << n;
   }
+}
+
+// Measured deviations are typed rounded: a mean-free list printed with 7 significant digits sums
+// to ~1e-8 of Σ|f_p| and was rejected (closure tolerance 1e-9) with advice ("subtract the mean
+// -4e-14 m") that rounding undoes. Truth: the unrounded mean-free list; the rounded one gives the
+// same flank lags to the rounding (≤ 5e-7 relative per entry, summed over the teeth).
+TEST(ToothModificationsTest, PitchDeviationsRoundedToSevenDigitsCloseWithinTheirRounding) {
+  const ZoneOfAction zone = Zone(1.5, 0.0);
+  constexpr int kTeeth = 50;
+  std::vector<double> exact(kTeeth), rounded(kTeeth);
+  double mean = 0.0;
+  for (int i = 0; i < kTeeth; ++i) {
+    exact[i] = 3 * kUm * std::sin(2.1 * i + 0.3) * std::cos(0.7 * i);  // irrational-looking
+    mean += exact[i] / kTeeth;
+  }
+  double sum_abs = 0.0, rounded_sum = 0.0;
+  for (int i = 0; i < kTeeth; ++i) {
+    exact[i] -= mean;
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.6e", exact[i]);
+    rounded[i] = std::stod(text);
+    sum_abs += std::abs(exact[i]);
+    rounded_sum += rounded[i];
+  }
+  ASSERT_GT(std::abs(rounded_sum), 1e-9 * sum_abs);  // the case the old tolerance rejected
+  ToothErrors a, b;
+  a.pinion_teeth = b.pinion_teeth = kTeeth;
+  a.gear_teeth = b.gear_teeth = 7;
+  a.pinion_pitch_deviations = exact;
+  b.pinion_pitch_deviations = rounded;
+  const UnloadedSeparation e_exact(zone, {}, a), e_rounded(zone, {}, b);
+  for (int i = 0; i < kTeeth; ++i) {
+    EXPECT_NEAR(e_rounded.pinion_flank_lags()[i], e_exact.pinion_flank_lags()[i],
+                kTeeth * 5e-7 * 3 * kUm);
+  }
+  // A list that does not close (Σ = 1e-5 Σ|f_p|, ten times the tolerance) is still rejected.
+  b.pinion_pitch_deviations[0] += 1e-5 * sum_abs;
+  EXPECT_THROWS_MESSAGE(UnloadedSeparation(zone, {}, b), InvalidInput,
+                        "pinion_pitch_deviations: the single pitch deviations of a closed gear");
 }
 
 TEST(ToothModificationsTest, RunoutIsTheCentreOffsetProjectedOnTheNormal) {

@@ -382,6 +382,44 @@ TEST(BuildMeshCoreTest, DriveSignFollowsTheTransmittedTorque) {
   EXPECT_EQ(n.contact_lines->zone().drive_sign, -1);
 }
 
+// Issue 12 (tryout): on a spur pair coefficient_form = "auto" stores the exact stiffness steps,
+// so fourier_terms/fourier_tolerance cannot change the core, and table_samples cannot either
+// when no transmission error is sampled; the keys were silently ignored. Truth that they have
+// no effect: the core built with and without the key is the same at every θ. Each gets a warning
+// naming the key; where the key does act (form "fourier"; a TE from a tip relief) none.
+TEST(BuildMeshCoreTest, CoefficientKeysWithoutEffectAreWarned) {
+  const auto warned = [](const BuiltMeshCore& b, const std::string& key) {
+    for (const std::string& w : b.warnings) {
+      if (w.find("mesh.") == 0 && w.find(key) != std::string::npos &&
+          w.find("no effect") != std::string::npos) {
+        return true;
+      }
+    }
+    return false;
+  };
+  const Scene plain = Parse(Pair());
+  const LinearMeshCore ref = Linear(BuildMeshCore(plain, plain.meshes[0]));
+  for (const std::string& key :
+       {std::string("fourier_terms = 12\n"), std::string("fourier_tolerance = 1e-3\n"),
+        std::string("table_samples = 64\n")}) {
+    const Scene s = Parse(Pair(key));
+    const BuiltMeshCore b = BuildMeshCore(s, s.meshes[0]);
+    for (const double th : {0.05, 1.3, 2.9, 4.4, 6.1}) {
+      EXPECT_EQ(EvalStiffnessCore(Linear(b), th), EvalStiffnessCore(ref, th)) << key;
+    }
+    const std::string name = key.substr(0, key.find(' '));
+    EXPECT_TRUE(warned(b, name)) << key;
+  }
+  // The keys act: a Fourier form takes fourier_terms, and a tip relief's TE is sampled at
+  // table_samples per mesh cycle.
+  const Scene fourier = Parse(Pair("coefficient_form = \"fourier\"\nfourier_terms = 12\n"));
+  EXPECT_FALSE(warned(BuildMeshCore(fourier, fourier.meshes[0]), "fourier_terms"));
+  const Scene relief = Parse(
+      Pair("table_samples = 64\n",
+           "[mesh.modifications]\npinion_tip_relief = 2e-5\npinion_tip_relief_length = 2e-3\n"));
+  EXPECT_FALSE(warned(BuildMeshCore(relief, relief.meshes[0]), "table_samples"));
+}
+
 TEST(BuildMeshCoreTest, DriveSignDownATrain) {
   // pinion (20) → idler (30) → wheel (40), +50 N m on the pinion: the idler turns backwards and
   // drives the wheel with T_idler = 50 / (−20/30) < 0.

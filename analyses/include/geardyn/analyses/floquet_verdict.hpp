@@ -4,6 +4,8 @@
 /// HB points (nonlinear_hb.hpp): a computation can fail, and a failed one has no verdict.
 #pragma once
 
+#include <string>
+
 namespace geardyn {
 
 /// @brief The stability verdict of a Floquet analysis (three-valued: a computation can fail).
@@ -22,5 +24,9 @@ namespace geardyn {
 enum class FloquetVerdict { kStable, kUnstable, kUndetermined };
 /// "stable", "unstable", "undetermined".
 const char* ToString(FloquetVerdict verdict);
+/// @brief max|λ| for a report: 4 significant digits ("1.069"), but "1 + 6.4e-12" (or "1 − …")
+/// when |max|λ| − 1| < 5e-4, where 4 digits would print "1" next to an "unstable" verdict;
+/// "nan"/"inf" as such.
+std::string FormatMaxAbsMultiplier(double max_abs);
 
 }  // namespace geardyn

@@ -80,6 +80,8 @@ SystemNhbProblem MakeSystemNhbProblem(const SystemModel& model);
 struct SystemNhbOptions {
   /// Engine options: harmonics H of ω_m/p (0 = traced with H = 8, 16, … until the energy in the
   /// top harmonics is below harmonic_tolerance), samples_per_harmonic, Newton, stability.
+  /// With tooth errors repeating every P > 1 mesh cycles the base is ω_m/(p·P) and H must be
+  /// ≥ p·P (the mesh harmonic), else InvalidInput; H = 0 is then refused too.
   NhbOptions hb;
   double start_hz = 0.0;  ///< first mesh frequency f_m [Hz] > 0
   double end_hz = 0.0;    ///< last mesh frequency [Hz] > 0, ≠ start_hz
@@ -156,12 +158,14 @@ struct SystemNhbCurve {
 };
 
 /// @brief Traces the steady-state response over [start_hz, end_hz] (see the @file).
-/// @throws InvalidInput on invalid options or an unsupported model.
+/// @throws InvalidInput on invalid options (H below the mesh harmonic p·P included) or an
+/// unsupported model.
 SystemNhbCurve TraceSystemNonlinearHb(const SystemModel& model, const SystemNhbOptions& options);
 
 /// @brief The periodic solution at one mesh frequency from the contact-branch guess (H from
 /// options.hb as in SolveNonlinearHarmonicBalance).
-/// @throws InvalidInput on f_m ≤ 0 or non-finite, invalid options or an unsupported model.
+/// @throws InvalidInput on f_m ≤ 0 or non-finite, invalid options (H below the mesh harmonic
+/// p·P included) or an unsupported model.
 SystemNhbPoint SolveSystemNonlinearHb(const SystemModel& model, double mesh_frequency_hz,
                                       const SystemNhbOptions& options, Summary* summary = nullptr);
 

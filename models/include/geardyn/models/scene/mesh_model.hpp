@@ -66,6 +66,10 @@ struct MeshModelDef {
   /// Coefficient form, Fourier terms / tolerance, table samples, number of slices (the level is
   /// taken from `level`).
   MeshCoreOptions core_options;
+  /// Whether the scene gave fourier_terms / fourier_tolerance / table_samples (BuildMeshCore
+  /// warns when a given key has no effect on the built core).
+  bool fourier_keys_given = false;
+  bool table_samples_given = false;
   /// Flank modifications of the loaded flanks (tooth_modifications.hpp) [m].
   ToothModifications modifications;
   /// Tooth-to-tooth errors; pinion_teeth/gear_teeth are filled by the scene reader (BuildMeshCore
