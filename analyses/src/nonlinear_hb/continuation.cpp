@@ -592,10 +592,21 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
         band_norm = norm;
       } else if (norm > kUndampedGrowth * band_norm) {
         std::ostringstream msg;
-        msg << std::setprecision(3) << "undamped resonance near " << OmegaText(c, omega)
-            << ": the response grew " << norm / band_norm << "-fold while the frequency stayed "
-            << "within " << 100 * kUndampedBand << " % (a vertical branch: nothing damps "
-            << "this resonance, and the periodic response grows without bound); add damping";
+        msg << std::setprecision(3)
+            << (damped ? "sharp resonance near " : "undamped resonance near ")
+            << OmegaText(c, omega) << ": the response grew " << norm / band_norm
+            << "-fold while the frequency stayed "
+            << "within " << 100 * kUndampedBand << " % ";
+        // A damped problem can meet a mode that its damping hardly reaches (the helical pair's
+        // rocking mode, ζ = 8e-5 with mesh damping only): its peak is bounded but too sharp to
+        // trace; only an undamped problem is known to grow without bound here.
+        if (damped) {
+          msg << "(a resonance too sharp to trace: a mode with little or no damping); add "
+                 "damping to that mode (bearing damping or scene-level modal damping)";
+        } else {
+          msg << "(a vertical branch: nothing damps this resonance, and the periodic response "
+                 "grows without bound); add damping";
+        }
         curve.summary.status = Status::kNotConverged;
         curve.summary.message = msg.str();
         curve.undamped_resonance_omega = omega;
