@@ -114,13 +114,7 @@ FloquetResult AutoModalProjectionFloquet(
             ", which does not change the verdict; --method magnus (or exact_steps) solves the "
             "full system to the tolerance");
       }
-      std::string why;
-      out.verdict = DecideVerdict(out.summary, out.multipliers, out.exponents, &why);
-      if (out.verdict == FloquetVerdict::kUndetermined) {
-        out.summary.warnings.push_back("verdict undetermined: " + why);
-      }
-      out.marginal =
-          IsMarginal(out.verdict, WithoutRigid(out.multipliers), out.summary.error_estimate);
+      RedecideVerdict(&out);
       return out;
     }
     const int next = NextBasisSize(m2, num_dofs);

@@ -244,6 +244,9 @@ FloquetVerdict CombineVerdicts(FloquetVerdict a, FloquetVerdict b);
 VectorXc WithoutRigid(const VectorXc& multipliers);
 /// Stable with a flexible multiplier within max(error_estimate, kMarginalFloor) of |λ| = 1.
 bool IsMarginal(FloquetVerdict verdict, const VectorXc& flexible, double error_estimate);
+/// @brief Re-decides the verdict (with a warning when undetermined) and the marginal flag of a
+/// finished result after its summary changed (the modal projections' tolerance decisions).
+void RedecideVerdict(FloquetResult* result);
 
 /// @brief Fills max|λ| (NaN-propagating), margin, verdict and the marginal flag from the
 /// multipliers, exponents and summary, after appending the 2r rigid multipliers 1 (sorted); the

@@ -149,13 +149,7 @@ FloquetResult ModalProjectionFloquet(
                               FormatEstimate(est) + " with " + std::to_string(m0) + "/" +
                               std::to_string(m1) + "/" + std::to_string(m2) + " modes";
       }
-      std::string why;
-      out.verdict = DecideVerdict(out.summary, out.multipliers, out.exponents, &why);
-      if (out.verdict == FloquetVerdict::kUndetermined) {
-        out.summary.warnings.push_back("verdict undetermined: " + why);
-      }
-      out.marginal =
-          IsMarginal(out.verdict, WithoutRigid(out.multipliers), out.summary.error_estimate);
+      RedecideVerdict(&out);
       return out;
     }
     m0 = m1;

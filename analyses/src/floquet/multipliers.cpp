@@ -197,6 +197,16 @@ bool IsMarginal(FloquetVerdict verdict, const VectorXc& flexible, double error_e
   return 1.0 - MaxAbsOf(flexible) <= std::max(error_estimate, kMarginalFloor);
 }
 
+void RedecideVerdict(FloquetResult* result) {
+  std::string why;
+  result->verdict = DecideVerdict(result->summary, result->multipliers, result->exponents, &why);
+  if (result->verdict == FloquetVerdict::kUndetermined) {
+    result->summary.warnings.push_back("verdict undetermined: " + why);
+  }
+  result->marginal = IsMarginal(result->verdict, WithoutRigid(result->multipliers),
+                                result->summary.error_estimate);
+}
+
 void FinishResult(int num_rigid, double tolerance, FloquetResult* result) {
   const bool marginal_flexible =
       IsMarginal(FloquetVerdict::kStable, result->multipliers, result->summary.error_estimate);

@@ -168,14 +168,8 @@ void NhbSolver::Impl::IntegrateProjected(const VectorX& x) {
   }
 }
 
-const NhbSolver::Impl::PieceExponential* NhbSolver::Impl::FindPieceExponential(const MatrixX& G) {
-  for (const PieceExponential& e : piece_exponentials) {
-    if (e.G == G) return &e;
-  }
-  if (piece_exponentials.size() >= kMaxPieceExponentials) return nullptr;
+MatrixX NhbSolver::Impl::BalancedPieceMatrix(const MatrixX& G) const {
   const int N = dofs;
-  PieceExponential e;
-  e.G = G;
   const MatrixX Minv = problem.mass.inverse();
   MatrixX A = MatrixX::Zero(2 * N, 2 * N);
   A.topRightCorner(N, N).diagonal().setConstant(monodromy_w0);
@@ -183,6 +177,17 @@ const NhbSolver::Impl::PieceExponential* NhbSolver::Impl::FindPieceExponential(c
       -Minv * (problem.stiffness + problem.projection.transpose() * G * problem.projection) /
       monodromy_w0;
   A.bottomRightCorner(N, N) = -Minv * problem.damping;
+  return A;
+}
+
+const NhbSolver::Impl::PieceExponential* NhbSolver::Impl::FindPieceExponential(const MatrixX& G) {
+  for (const PieceExponential& e : piece_exponentials) {
+    if (e.G == G) return &e;
+  }
+  if (piece_exponentials.size() >= kMaxPieceExponentials) return nullptr;
+  PieceExponential e;
+  e.G = G;
+  const MatrixX A = BalancedPieceMatrix(G);
   Eigen::EigenSolver<MatrixX> es(A, true);
   if (es.info() == Eigen::Success) {
     const MatrixXc V = es.eigenvectors();
@@ -252,14 +257,7 @@ double NhbSolver::Impl::ProjectedMonodromyMaxMultiplier(const VectorX& x, double
       E.noalias() = scaled_re * e->vinv_re;
       E.noalias() -= scaled_im * e->vinv_im;
     } else {
-      const MatrixX Minv = problem.mass.inverse();
-      MatrixX A = MatrixX::Zero(2 * N, 2 * N);
-      A.topRightCorner(N, N).diagonal().setConstant(monodromy_w0);
-      A.bottomLeftCorner(N, N) =
-          -Minv * (problem.stiffness + problem.projection.transpose() * G * problem.projection) /
-          monodromy_w0;
-      A.bottomRightCorner(N, N) = -Minv * problem.damping;
-      E = (A * h).exp();
+      E = (BalancedPieceMatrix(G) * h).exp();
     }
     next.noalias() = E * phi;
     phi.swap(next);

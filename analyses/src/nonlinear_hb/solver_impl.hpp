@@ -72,6 +72,9 @@ struct NhbSolver::Impl {
   double monodromy_w0 = 0.0;                         ///< ω₀ of the balancing (0: not set).
   /// The entry of G, made when new (nullptr: the cache is full).
   const PieceExponential* FindPieceExponential(const MatrixX& G);
+  /// The balanced first-order matrix A' = [0 ω₀I; −M⁻¹(K + PᵀGP)/ω₀ −M⁻¹C] of one piece (state
+  /// [q; q̇/ω₀], ω₀ = monodromy_w0).
+  MatrixX BalancedPieceMatrix(const MatrixX& G) const;
   /// x of the last IntegrateProjected (g_h, dg_h, switch_angles are its results); valid only
   /// while integrated_valid. The monodromy and the description of an accepted point reuse the
   /// corrector's last integration instead of repeating it.
