@@ -53,14 +53,7 @@ FloquetResult AutoModalProjectionFloquet(
   inner.keep_monodromy = false;
   inner.tolerance =
       kAutoInnerToleranceFactor * std::max(options.tolerance, kAutoProjectionAccuracy);
-  auto run = [&](int m) {
-    const PeriodicSecondOrderSystem reduced = project(modes(m));
-    const FloquetMethod method = SelectGenericMethod(reduced, inner);
-    const StateSystem sys = MakeStateSystem(reduced, inner.deflate_rigid_modes);
-    FloquetResult r = ComputeFloquetState(sys, inner, method);
-    r.summary.counters["inner_method"] = static_cast<long>(method);
-    return r;
-  };
+  auto run = [&](int m) { return ComputeReducedFloquet(project(modes(m)), inner); };
   auto unprojected = [&](const std::string& why) {
     FloquetResult r = full();
     r.summary.warnings.push_back("kAuto: the modal projection " + why +

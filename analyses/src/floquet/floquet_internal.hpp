@@ -247,6 +247,10 @@ bool IsMarginal(FloquetVerdict verdict, const VectorXc& flexible, double error_e
 /// @brief Re-decides the verdict (with a warning when undetermined) and the marginal flag of a
 /// finished result after its summary changed (the modal projections' tolerance decisions).
 void RedecideVerdict(FloquetResult* result);
+/// @brief Floquet of a modally reduced system by the generic engine (the method SelectGenericMethod
+/// picks), its method recorded in summary.counters["inner_method"].
+FloquetResult ComputeReducedFloquet(const PeriodicSecondOrderSystem& reduced,
+                                    const FloquetOptions& inner);
 
 /// @brief Fills max|λ| (NaN-propagating), margin, verdict and the marginal flag from the
 /// multipliers, exponents and summary, after appending the 2r rigid multipliers 1 (sorted); the

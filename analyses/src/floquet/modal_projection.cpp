@@ -91,6 +91,15 @@ constexpr double kSafetyFactor = 4.0;  // see the file comment
 
 }  // namespace
 
+FloquetResult ComputeReducedFloquet(const PeriodicSecondOrderSystem& reduced,
+                                    const FloquetOptions& inner) {
+  const FloquetMethod method = SelectGenericMethod(reduced, inner);
+  const StateSystem sys = MakeStateSystem(reduced, inner.deflate_rigid_modes);
+  FloquetResult r = ComputeFloquetState(sys, inner, method);
+  r.summary.counters["inner_method"] = static_cast<long>(method);
+  return r;
+}
+
 FloquetResult ModalProjectionFloquet(
     const std::function<MatrixX(int)>& modes, int num_dofs,
     const std::function<PeriodicSecondOrderSystem(const MatrixX&)>& project,
@@ -99,14 +108,7 @@ FloquetResult ModalProjectionFloquet(
   inner.method = FloquetMethod::kAuto;
   inner.modal_projection_min_dofs = num_dofs + 1;  // never recurse
   inner.keep_monodromy = false;
-  auto run = [&](int m) {
-    const PeriodicSecondOrderSystem reduced = project(modes(m));
-    const FloquetMethod method = SelectGenericMethod(reduced, inner);
-    const StateSystem sys = MakeStateSystem(reduced, inner.deflate_rigid_modes);
-    FloquetResult r = ComputeFloquetState(sys, inner, method);
-    r.summary.counters["inner_method"] = static_cast<long>(method);
-    return r;
-  };
+  auto run = [&](int m) { return ComputeReducedFloquet(project(modes(m)), inner); };
   auto next = [num_dofs](int m) { return NextBasisSize(m, num_dofs); };
   int m0 = options.num_modes > 0 ? std::min(options.num_modes, num_dofs)
            : initial_modes > 0   ? std::min(initial_modes, num_dofs)
