@@ -19,6 +19,7 @@
 #include "geardyn/system/system_harmonics.hpp"
 #include "geardyn/system/workspace.hpp"
 #include "hb_internal.hpp"
+#include "hb_solver_impl.hpp"
 
 namespace geardyn {
 namespace {
@@ -26,27 +27,14 @@ namespace {
 using internal::Complex;
 using internal::ComplexSparse;
 
-// Relative size below which a θ-varying harmonic counts as zero (round-off of the expansion).
-constexpr double kVaryingTol = 1e-13;
-// Estimated reciprocal condition number below which a solve is reported as unreliable.
-constexpr double kMinRcond = 1e-14;
-// Estimated reciprocal condition number below which a warning names the digits lost.
-constexpr double kWarnRcond = 1e-10;
-// A forcing class whose largest load harmonic is below this fraction of the largest is not
-// solved (round-off of the expansion).
-constexpr double kForcingTol = 1e-12;
-// Modal damping ratio below which a mode of the mean system counts as undamped [-].
-constexpr double kUndampedZeta = 1e-6;
-// Share of the alternating response (mass-weighted) above which an undamped mode "dominates".
-constexpr double kUndampedShare = 0.1;
-// Largest model whose mean modes are computed (dense) for the undamped-mode check.
-constexpr int kMaxModalCheckDofs = 3000;
-// Largest working memory of one H accepted (EstimateBytes) [B].
-constexpr double kMaxHbBytes = 2.0 * 1024 * 1024 * 1024;
+using internal::kForcingTol;
+using internal::kMaxHbBytes;
+using internal::kMinRcond;
+using internal::kVaryingTol;
+using internal::kWarnRcond;
 
 using internal::FormatG;
 using internal::kIllConditionedText;
-using internal::kUndampedShareText;
 using internal::MergePointWarnings;
 using internal::PointWarningPrefix;
 
@@ -101,182 +89,6 @@ double EstimateSparseRcond(const ComplexSparse& A, Eigen::SparseLU<ComplexSparse
 }  // namespace internal
 
 using internal::EstimateSparseRcond;
-
-// Everything that depends on (model, H) but not on the frequency. Harmonic indices k are of
-// Ω = ω_m/P (P = period_meshes()); the operator K, C repeats every q = P/P_K of them, so only
-// harmonics in one class k ≡ ±c (mod q) couple (harmonic_balance.hpp "Harmonic set").
-struct HbSetup {
-  int H = 0;  // harmonics of the operator frequency ω_m/P_K (mesh orders when P_K = 1)
-  int n = 0;
-  int q = 1;     // P / P_K
-  int kmax = 0;  // largest kept one-sided harmonic
-  bool dense = true;
-  // Sparse harmonics (harmonic_balance.hpp "Long hunting periods"): nothing is indexed by k up
-  // to k_max; the outputs come from the class envelopes (HbClassSampler).
-  bool sparse = false;
-  std::vector<int> ks;       // kept one-sided harmonics, ascending, ks[0] = 0
-  std::vector<int> classes;  // c ∈ [0, q/2] solved (0 always)
-  // Per mesh: K2, C2 at the operator harmonics jq (j = 0 … 2H+1), K2 ε and ε at ks[i].
-  std::vector<std::vector<Matrix2c>> op_stiffness, op_damping;
-  std::vector<std::vector<Vector2c>> load, eps;
-  SparseMatrix M, Kbar, Cbar;            // mean system
-  SparseMatrix Kbar0;                    // K̄ + rigid-body penalty W (harmonic 0 only)
-  MatrixX M_d, Kbar_d, Kbar0_d, Cbar_d;  // dense copies (dense storage)
-  std::vector<VectorXc> F;               // per position in ks (F_0 balanced)
-  double unbalanced = 0.0;
-  // Mesh-deflection channels (rows of G_all) whose stiffness or damping varies with θ.
-  int r = 0;
-  MatrixX Gt_d;                  // (n × r) dense G_allᵀ
-  SparseMatrix Gt;               // (n × r)
-  SparseMatrix G;                // (r × n)
-  std::vector<MatrixXc> dK, dC;  // j = 0 … 2H+1: (r × r) harmonic jq of the θ-varying part
-  // Reused factorizations.
-  Eigen::PartialPivLU<MatrixXc> dense_lu;
-  Eigen::SparseLU<ComplexSparse> sparse_lu;
-  bool pattern_analysed = false;
-  std::unique_ptr<internal::HbOutputSampler> sampler;
-  std::unique_ptr<internal::HbClassSampler> class_sampler;
-
-  // Position of the kept harmonic k in ks (k must be kept).
-  int Pos(int k) const {
-    const auto it = std::lower_bound(ks.begin(), ks.end(), k);
-    GEARDYN_DEMAND(it != ks.end() && *it == k);
-    return static_cast<int>(it - ks.begin());
-  }
-  // ΔK, ΔC at harmonic m (a multiple of q), X_{−m} = conj(X_m).
-  MatrixXc DeltaAt(const std::vector<MatrixXc>& d, int m) const {
-    const MatrixXc& x = d[static_cast<size_t>(std::abs(m) / q)];
-    return m >= 0 ? x : MatrixXc(x.conjugate());
-  }
-};
-
-// Undamped modes of the mean system (harmonic_balance.hpp "Undamped modes").
-struct UndampedModes {
-  bool checked = false;
-  std::string note;  // why the check was skipped
-  MatrixX phi;       // (n × u) M-orthonormal
-  VectorX freq_hz;   // (u)
-  VectorX zeta;      // (u) φᵀ C̄ φ / (2ω)
-};
-
-struct HarmonicBalanceSolver::Impl {
-  SystemModel model;
-  HbOptions options;
-  std::vector<std::string> warnings;
-  internal::RigidModes rigid;
-  bool rigid_done = false;
-  UndampedModes undamped;
-  std::map<int, std::unique_ptr<HbSetup>> setups;
-
-  std::int64_t ClassModulus() const { return model.period_meshes() / OperatorPeriodMeshes(model); }
-  double EstimateBytes(int H) const;
-  // The sparse path's memory [B] (harmonic_balance.hpp "Long hunting periods"), or +inf when
-  // the model cannot take it (why in *why).
-  double EstimateSparseBytes(int H, std::string* why) const;
-  bool UseSparse(int H) const;
-  std::vector<int> CandidateClasses() const;
-  HbSetup& Setup(int H);
-  void FindUndampedModes(const HbSetup& s);
-  void CheckUndampedShare(const HbSetup& s, const MatrixXc& Q, double f_m, Summary* out) const;
-  MatrixXc SolveDecoupledOrCondensed(HbSetup& s, double omega, bool condensed, double* rcond,
-                                     long* factorizations);
-  MatrixXc SolveDirect(HbSetup& s, double omega, double* rcond);
-  HbResult SolveFixed(int H, double f_m);
-};
-
-double HarmonicBalanceSolver::Impl::EstimateBytes(int H) const {
-  const double q = static_cast<double>(ClassModulus());
-  const double n = model.num_dofs();
-  const double meshes = model.num_meshes();
-  const double kmax = H * q + q / 2.0;
-  const double r = 2.0 * meshes;
-  // Mesh harmonics (3 arrays of 2×2 complex up to (2H+1)q) and the expansion's samples (8
-  // channels, real and complex), the response (n × (k_max+1)), the sampler (up to 16(k_max+1)
-  // samples of q, q̇ and the FFT buffers, and per mesh K2, C2, ε), the per-harmonic solves (at
-  // most (2H+2) min(q, 2H+2) kept harmonics of n(1+r) columns), the class coupling ((2H+2)r)².
-  const double harm = (2.0 * H + 2.0) * q;
-  double bytes = meshes * harm * 160.0 + harm * 2.0 * 8.0 * 24.0;
-  bytes += 16.0 * n * (kmax + 1.0);
-  bytes += 16.0 * (kmax + 1.0) * (4.0 * 8.0 * n + meshes * 96.0);
-  bytes += 16.0 * std::min(kmax + 1.0, (2.0 * H + 2.0) * q) * n * (1.0 + r) / std::max(q, 1.0) *
-           std::min(q, 2.0 * H + 2.0);
-  bytes += 16.0 * std::pow((2.0 * H + 2.0) * r, 2);
-  return bytes;
-}
-
-// Classes c ∈ [0, q/2] that some load line can reach: the residues mod q of the coefficient
-// parts' harmonics (multiples of P/P_b) shifted by ± each sideband line (m P/P_s).
-std::vector<int> HarmonicBalanceSolver::Impl::CandidateClasses() const {
-  const std::int64_t q = ClassModulus();
-  const std::int64_t P = model.period_meshes();
-  std::vector<char> seen(static_cast<size_t>(q / 2 + 1), 0);
-  seen[0] = 1;
-  for (const SystemMesh& mesh : model.meshes()) {
-    const auto* c = std::get_if<LinearMeshCore>(&mesh.core);
-    if (c == nullptr) continue;
-    const std::int64_t step = P / CoefficientPeriodMeshes(*c);  // coefficient harmonics' spacing
-    const std::int64_t residues = q / std::gcd(step % q == 0 ? q : step % q, q);
-    std::vector<std::int64_t> shifts = {0};
-    const TransmissionErrorSidebands& sb = c->sidebands();
-    for (int l = 0; l < sb.size(); ++l) {
-      const std::int64_t m = (sb.harmonics[static_cast<size_t>(l)] * (P / sb.period_meshes)) % q;
-      shifts.push_back(m);
-      shifts.push_back(q - m);
-    }
-    for (std::int64_t t = 0; t < residues; ++t) {
-      for (std::int64_t shift : shifts) {
-        const std::int64_t r = ((t * step) % q + shift) % q;
-        seen[static_cast<size_t>(std::min(r, q - r))] = 1;
-      }
-    }
-  }
-  std::vector<int> out;
-  for (size_t c = 0; c < seen.size(); ++c) {
-    if (seen[c]) out.push_back(static_cast<int>(c));
-  }
-  return out;
-}
-
-double HarmonicBalanceSolver::Impl::EstimateSparseBytes(int H, std::string* why) const {
-  const std::int64_t q = ClassModulus();
-  const std::int64_t P = model.period_meshes();
-  for (const SystemMesh& mesh : model.meshes()) {
-    const auto* c = std::get_if<LinearMeshCore>(&mesh.core);
-    if (c == nullptr) {
-      *why = "mesh '" + mesh.name + "' is not a linear core";
-      return std::numeric_limits<double>::infinity();
-    }
-    // The coefficient part is expanded at its own period: (H+1) q P_b/P harmonics.
-    const double nb = (H + 1.0) * static_cast<double>(q) *
-                      static_cast<double>(CoefficientPeriodMeshes(*c)) / static_cast<double>(P);
-    if (nb > 1e6) {
-      *why = "mesh '" + mesh.name + "': its ε coefficient repeats over " +
-             std::to_string(CoefficientPeriodMeshes(*c)) +
-             " mesh cycles (pitch errors?); only a runout has a sparse form (sidebands)";
-      return std::numeric_limits<double>::infinity();
-    }
-  }
-  if ((H + 2.0) * static_cast<double>(q) >= std::numeric_limits<int>::max()) {
-    *why = "the kept harmonics exceed the index range";
-    return std::numeric_limits<double>::infinity();
-  }
-  const double classes = static_cast<double>(CandidateClasses().size());
-  const double n = model.num_dofs();
-  const double r = 2.0 * model.num_meshes();
-  const double kept = classes * (2.0 * H + 2.0);
-  // Per kept harmonic the LTI solve [F, Gᵀ] (n(1+r)) and its response; the class coupling
-  // ((2H+2) r)²; the envelope samples (≤ 8(H+2) per operator period, n × classes × 2).
-  return 16.0 * kept * n * (2.0 + r) + 16.0 * std::pow((2.0 * H + 2.0) * r, 2) +
-         16.0 * classes * 2.0 * n * std::max(256.0, 16.0 * (H + 2.0));
-}
-
-// The sparse path when the dense one would exceed the memory limit and the model allows it.
-bool HarmonicBalanceSolver::Impl::UseSparse(int H) const {
-  if (options.harmonic_storage == HbHarmonicStorage::kSparse) return true;
-  if (options.harmonic_storage == HbHarmonicStorage::kDense) return false;
-  std::string why;
-  return EstimateBytes(H) > kMaxHbBytes && EstimateSparseBytes(H, &why) <= kMaxHbBytes;
-}
 
 HbSetup& HarmonicBalanceSolver::Impl::Setup(int H) {
   auto it = setups.find(H);
@@ -502,70 +314,6 @@ HbSetup& HarmonicBalanceSolver::Impl::Setup(int H) {
   return ref;
 }
 
-void HarmonicBalanceSolver::Impl::FindUndampedModes(const HbSetup& s) {
-  undamped.checked = true;
-  if (s.n == 0) return;
-  if (s.n > kMaxModalCheckDofs) {
-    undamped.note = "undamped modes not checked (" + std::to_string(s.n) + " DOFs > " +
-                    std::to_string(kMaxModalCheckDofs) + ")";
-    return;
-  }
-  GeneralizedEigenResult eig;
-  try {
-    eig = SolveGeneralizedEigenDense(MatrixX(s.Kbar), MatrixX(s.M));
-  } catch (const InvalidInput& e) {
-    undamped.note = std::string("undamped modes not checked (") + e.what() + ")";
-    return;
-  }
-  if (!eig.summary.ok() || eig.vectors.cols() != eig.eigenvalues.size()) {
-    undamped.note = "undamped modes not checked (mean eigenproblem: " + eig.summary.message + ")";
-    return;
-  }
-  const MatrixX C = MatrixX(s.Cbar);
-  std::vector<int> keep;
-  std::vector<double> f, z;
-  for (Eigen::Index i = 0; i < eig.eigenvalues.size(); ++i) {
-    const double lambda = eig.eigenvalues(i);
-    if (!(lambda > 0.0)) continue;  // rigid-body zero
-    const double w = std::sqrt(lambda);
-    const double zeta = eig.vectors.col(i).dot(C * eig.vectors.col(i)) / (2.0 * w);
-    if (zeta < kUndampedZeta) {
-      keep.push_back(static_cast<int>(i));
-      f.push_back(w / (2.0 * std::numbers::pi));
-      z.push_back(zeta);
-    }
-  }
-  undamped.phi.resize(s.n, static_cast<Eigen::Index>(keep.size()));
-  for (size_t i = 0; i < keep.size(); ++i) undamped.phi.col(i) = eig.vectors.col(keep[i]);
-  undamped.freq_hz = Eigen::Map<const VectorX>(f.data(), static_cast<Eigen::Index>(f.size()));
-  undamped.zeta = Eigen::Map<const VectorX>(z.data(), static_cast<Eigen::Index>(z.size()));
-}
-
-// Share of the alternating response along each undamped mode, in the mass norm: Σ_{k≥1}
-// |φᵀ M Q_k|² / Σ_{k≥1} Q_kᴴ M Q_k (φ M-orthonormal, so the shares of all modes sum to 1).
-void HarmonicBalanceSolver::Impl::CheckUndampedShare(const HbSetup& s, const MatrixXc& Q,
-                                                     double f_m, Summary* out) const {
-  if (undamped.phi.cols() == 0) return;
-  const MatrixXc MQ = s.M.cast<Complex>() * Q.rightCols(Q.cols() - 1);
-  const double total = (Q.rightCols(Q.cols() - 1).conjugate().cwiseProduct(MQ)).sum().real();
-  if (!(total > 0.0)) return;
-  const MatrixXc modal = undamped.phi.transpose().cast<Complex>() * MQ;  // (u × kmax)
-  for (Eigen::Index i = 0; i < undamped.phi.cols(); ++i) {
-    const double share = modal.row(i).squaredNorm() / total;
-    if (share > kUndampedShare) {
-      out->warnings.push_back(
-          PointWarningPrefix(f_m) + FormatG(100.0 * share) + kUndampedShareText + " (" +
-          FormatG(undamped.freq_hz(i)) + " Hz, modal damping ratio " + FormatG(undamped.zeta(i)) +
-          "): its amplitude is set by the truncation, not by damping; add damping (bearings, "
-          "system modal/Rayleigh damping) before trusting it");
-    }
-  }
-}
-
-// Block-diagonal LTI harmonics A_k = −k²Ω²M + ikΩC̄ + K̄ solved for [F_k, G_allᵀ] at every kept
-// k; with the coupling (condensed), per class c the mesh-deflection system (I + R T) D = D⁰ over
-// the two-sided window k ≡ c (mod q), |k| ≤ Hq + c (class 0 in the real layout, stride q;
-// others complex, k < 0 by A_{−k} = conj A_k), then Q_k = A_k⁻¹ (F_k − G_allᵀ (T D)_k).
 MatrixXc HarmonicBalanceSolver::Impl::SolveDecoupledOrCondensed(HbSetup& s, double omega,
                                                                 bool condensed, double* rcond,
                                                                 long* factorizations) {
