@@ -95,6 +95,9 @@ bool NhbContinuationOptions::IsValid(std::string* why) const {
   else if (max_points > kMaxPoints)
     s << "max_points: must be ≤ " << kMaxPoints << ", got " << max_points
       << " (every point keeps N·(2H+1) harmonics and 2N multipliers)";
+  else if (branch_search < 0 || branch_search > 1000)
+    s << "branch_search: must be in [0, 1000] frequencies, got " << branch_search
+      << " (each costs 4 Newton solves; the CLI's --branch-search has the same bound)";
   else if (max_corrector_iterations < 1)
     s << "max_corrector_iterations: must be ≥ 1";
   else if (!(max_tangent_angle > 0))

@@ -207,6 +207,18 @@ TEST(NhbContinuation, UndampedResonanceIsDetectedAtTheNaturalFrequency) {
   }
 }
 
+TEST(NhbContinuation, BranchSearchCountIsBounded) {
+  NhbContinuationOptions c;
+  std::string why;
+  c.branch_search = 1000;
+  EXPECT_TRUE(c.IsValid(&why)) << why;
+  c.branch_search = 1001;
+  EXPECT_FALSE(c.IsValid(&why));
+  EXPECT_NE(why.find("branch_search"), std::string::npos) << why;
+  c.branch_search = -1;
+  EXPECT_FALSE(c.IsValid(&why));
+}
+
 TEST(NhbContinuation, FoldToleranceIsValidated) {
   NhbContinuationOptions c;
   std::string why;
