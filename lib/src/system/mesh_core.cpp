@@ -423,15 +423,18 @@ NonlinearMeshCoreOutput NonlinearMeshCore::MakeOutput() const {
   out.force = VectorX::Zero(n);
   out.stiffness = MatrixX::Zero(n, n);
   out.damping = MatrixX::Zero(n, n);
+  out.switching = VectorX::Zero(num_switching_functions());
+  out.channels = VectorX::Zero(static_cast<Eigen::Index>(channel_names().size()));
   return out;
 }
 
-void NonlinearMeshCore::CalcForces(NonlinearMeshCoreWorkspace& ws, double theta,
+void NonlinearMeshCore::CalcForces(NonlinearMeshCoreWorkspace& ws, double theta, double theta_rate,
                                    const Eigen::Ref<const VectorX>& x,
                                    const Eigen::Ref<const VectorX>& v, bool with_jacobians,
                                    NonlinearMeshCoreOutput* out) const {
   const int n = num_coordinates();
   GEARDYN_THROW_UNLESS(std::isfinite(theta), "theta: must be finite, got " << theta);
+  GEARDYN_THROW_UNLESS(std::isfinite(theta_rate), "theta_rate: must be finite, got " << theta_rate);
   GEARDYN_CHECK_SIZE(x.size(), n, "x");
   GEARDYN_CHECK_SIZE(v.size(), n, "v");
   GEARDYN_THROW_UNLESS(out != nullptr, "out: must not be null");
@@ -442,7 +445,7 @@ void NonlinearMeshCore::CalcForces(NonlinearMeshCoreWorkspace& ws, double theta,
             out->damping.cols() == n,
         "out: stiffness and damping must be " << n << "x" << n << " (use MakeOutput())");
   }
-  DoCalcForces(ws, theta, x, v, with_jacobians, out);
+  DoCalcForces(ws, theta, theta_rate, x, v, with_jacobians, out);
 }
 
 // ---------------------------------------------------------------------------- MeshCore

@@ -147,9 +147,12 @@ MeshIndex SystemBuilder::AddMesh(const std::string& name, BodyIndex body_i, Body
   GEARDYN_THROW_UNLESS(G.allFinite(), what << " G: non-finite entry");
   if (const auto* nl = std::get_if<std::shared_ptr<const NonlinearMeshCore>>(&core)) {
     GEARDYN_THROW_UNLESS(*nl != nullptr, what << ": null nonlinear core");
-    GEARDYN_THROW_UNLESS((*nl)->num_coordinates() == 12,
-                         what << ": nonlinear core with " << (*nl)->num_coordinates()
-                              << " coordinates; only the 12 of [q_i; q_j] are supported");
+    GEARDYN_THROW_UNLESS(
+        (*nl)->num_internal_coordinates() >= 0 &&
+            (*nl)->num_coordinates() == 12 + (*nl)->num_internal_coordinates(),
+        what << ": nonlinear core with " << (*nl)->num_coordinates() << " coordinates and "
+             << (*nl)->num_internal_coordinates()
+             << " internal ones; it must read the 12 of [q_i; q_j] followed by its internal ones");
   }
   if (equivalent_mass) {
     GEARDYN_THROW_UNLESS(

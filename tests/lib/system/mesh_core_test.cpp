@@ -492,7 +492,7 @@ class ClearanceSpringCore final : public NonlinearMeshCore {
   }
 
  protected:
-  void DoCalcForces(NonlinearMeshCoreWorkspace& /*ws*/, double /*theta*/,
+  void DoCalcForces(NonlinearMeshCoreWorkspace& /*ws*/, double /*theta*/, double /*theta_rate*/,
                     const Eigen::Ref<const VectorX>& x, const Eigen::Ref<const VectorX>& /*v*/,
                     bool with_jacobians, NonlinearMeshCoreOutput* out) const override {
     const double a = x[0] - x[1];
@@ -520,25 +520,32 @@ TEST(NonlinearMeshCoreTest, TestDoubleRunsThroughTheInterfaceAndTheVariant) {
   NonlinearMeshCoreOutput out = core->MakeOutput();
   EXPECT_EQ(out.force.size(), 2);
   EXPECT_EQ(out.stiffness.rows(), 2);
-  core->CalcForces(*ws, 0.0, Eigen::Vector2d(3e-6, 0.0), Eigen::Vector2d::Zero(), true, &out);
+  core->CalcForces(*ws, 0.0, 0.0, Eigen::Vector2d(3e-6, 0.0), Eigen::Vector2d::Zero(), true, &out);
   EXPECT_NEAR(out.force[0], -300.0, 1e-9);
   EXPECT_EQ(out.stiffness(0, 1), -1e8);
   EXPECT_EQ(out.num_contacts, 1);
-  core->CalcForces(*ws, 0.0, Eigen::Vector2d(-3e-6, 0.0), Eigen::Vector2d::Zero(), false, &out);
+  core->CalcForces(*ws, 0.0, 0.0, Eigen::Vector2d(-3e-6, 0.0), Eigen::Vector2d::Zero(), false,
+                   &out);
   EXPECT_EQ(out.force, Eigen::Vector2d::Zero());
-  EXPECT_THROWS_MESSAGE(
-      core->CalcForces(*ws, 0.0, Eigen::Vector3d::Zero(), Eigen::Vector2d::Zero(), false, &out),
-      InvalidInput, "x: size 3 does not match the expected 2");
-  EXPECT_THROWS_MESSAGE(
-      core->CalcForces(*ws, 0.0, Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), false, nullptr),
-      InvalidInput, "out: must not be null");
+  EXPECT_THROWS_MESSAGE(core->CalcForces(*ws, 0.0, 0.0, Eigen::Vector3d::Zero(),
+                                         Eigen::Vector2d::Zero(), false, &out),
+                        InvalidInput, "x: size 3 does not match the expected 2");
+  EXPECT_THROWS_MESSAGE(core->CalcForces(*ws, 0.0, 0.0, Eigen::Vector2d::Zero(),
+                                         Eigen::Vector2d::Zero(), false, nullptr),
+                        InvalidInput, "out: must not be null");
   NonlinearMeshCoreOutput small;
   small.force = VectorX::Zero(2);
-  EXPECT_THROWS_MESSAGE(
-      core->CalcForces(*ws, 0.0, Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(), true, &small),
-      InvalidInput, "out: stiffness and damping must be 2x2");
+  EXPECT_THROWS_MESSAGE(core->CalcForces(*ws, 0.0, 0.0, Eigen::Vector2d::Zero(),
+                                         Eigen::Vector2d::Zero(), true, &small),
+                        InvalidInput, "out: stiffness and damping must be 2x2");
   const MeshCore null_core = std::shared_ptr<const NonlinearMeshCore>();
   EXPECT_THROWS_MESSAGE(PeriodMeshes(null_core), InvalidInput, "core: null NonlinearMeshCore");
+  EXPECT_THROWS_MESSAGE(core->CalcForces(*ws, 0.0, std::nan(""), Eigen::Vector2d::Zero(),
+                                         Eigen::Vector2d::Zero(), false, &out),
+                        InvalidInput, "theta_rate: must be finite");
+  EXPECT_EQ(core->num_internal_coordinates(), 0);
+  EXPECT_EQ(core->InternalMass().norm(), 0.0);
+  EXPECT_EQ(out.channels.size(), 0);
 }
 
 // ---------------------------------------------------------------------------- error paths

@@ -387,23 +387,52 @@ class NonlinearMeshCoreWorkspace {
 };
 
 /// @brief Output of NonlinearMeshCore::CalcForces, sized by NonlinearMeshCore::MakeOutput().
+///
+/// **Power identity** (what time integration's energy balance rests on). With E the core's
+/// stored energy, D ≥ 0 the power it dissipates and P the power that the prescribed mesh motion
+/// (the nominal rotation θ(t), which no coordinate carries) feeds into it, every core satisfies at
+/// every state
+/// \f[ \mathrm{force}^T v = -\frac{dE}{dt} + P - D, \qquad
+///     \frac{dE}{dt} = \frac{\partial E}{\partial x} v + \frac{\partial E}{\partial θ}\dot θ. \f]
+/// For a conservative core P = ∂E/∂θ·θ̇ and D = 0; a viscous or friction element adds to D what it
+/// dissipates, and the part of the friction work done by the nominal sliding to P (as a negative
+/// contribution). The system's balance is then d(T + V₀ + ΣE)/dt = f₀ᵀv + ΣP − vᵀC₀v − ΣD.
 struct NonlinearMeshCoreOutput {
-  VectorX force;         ///< (n) generalized force on the core's coordinates [N, N·m]
-  MatrixX stiffness;     ///< (n×n) −∂force/∂x, filled when requested [N/m, N, N·m]
-  MatrixX damping;       ///< (n×n) −∂force/∂v, filled when requested [N·s/m, …]
-  double energy = 0.0;   ///< elastic energy stored in the contacts [J]
-  int num_contacts = 0;  ///< active contacts (diagnostics)
+  VectorX force;        ///< (n) generalized force on the core's coordinates [N, N·m]
+  MatrixX stiffness;    ///< (n×n) −∂force/∂x, filled when requested [N/m, N, N·m]
+  MatrixX damping;      ///< (n×n) −∂force/∂v, filled when requested [N·s/m, …]
+  double energy = 0.0;  ///< E: energy stored in the core (contacts + internal springs) [J]
+  double dissipation_power = 0.0;  ///< D ≥ 0: power dissipated by the core [W]
+  double phase_power = 0.0;        ///< P: power fed in by the prescribed mesh motion [W]
+  int num_contacts = 0;            ///< active contacts (diagnostics)
+  /// (num_switching_functions()) signed switching functions g_k(x, θ) [m]: a zero crossing is a
+  /// contact event (g > 0 open, g ≤ 0 closed: e.g. the signed gap of each candidate tooth-pair
+  /// flank and slice). Time integrators locate their crossings instead of stepping over them.
+  VectorX switching;
+  /// (channel_names().size()) the core's own diagnostics at this state (e.g. per-tooth contact
+  /// forces [N], contact status [-], tooth deflections [rad, m]); units in the names.
+  VectorX channels;
 };
 
 /// @brief The escape hatch for nonlinear mesh cores that are not data (spec 03 tooth-contact
 /// core with its tooth bodies, involute contact search, Kim's contact law).
 ///
-/// **Contract.** The core acts on n = num_coordinates() coordinates x of the assembled system
-/// (e.g. q_pair = [q_i; q_j] of the two gear trunks followed by the tooth-body coordinates; the
-/// system builder maps them through DOF indices). It is called ONCE per state evaluation with all
-/// its teeth batched (architecture §3.4: no virtual call per tooth, θ-sample or harmonic), from
-/// one thread per workspace. CalcForces checks the sizes, then calls DoCalcForces; the
-/// implementation must not allocate after MakeWorkspace()/MakeOutput().
+/// **Contract.** The core acts on n = num_coordinates() = 12 + num_internal_coordinates()
+/// coordinates x = [q_i; q_j; x_int]: the 12 of the two gear bodies (the system builder maps them
+/// through the mesh's DOF indices) followed by the core's internal coordinates (e.g. the tooth
+/// bodies of spec 03: rotations/translations of each tooth relative to its trunk [rad, m]). The
+/// internal coordinates are not DOFs of the SystemModel: only time-domain analyses integrate
+/// them (appended after the system DOFs, mesh by mesh), with the mass InternalMass() adds;
+/// analyses that need a linear operator (modes, Floquet, harmonic balance) refuse such cores.
+///
+/// The core is called ONCE per state evaluation with all its teeth batched (architecture §3.4:
+/// no virtual call per tooth, θ-sample or harmonic), from one thread per workspace. CalcForces
+/// checks the sizes, then calls DoCalcForces; the implementation must not allocate after
+/// MakeWorkspace()/MakeOutput().
+///
+/// **Mesh phase.** θ [rad] advances by 2π per mesh cycle; θ̇ [rad/s] is its rate (the mesh
+/// frequency in rad/s at constant speed). The nominal rotation of the pinion is θ/z_i, of the
+/// gear ∓θ/z_j (the core knows its tooth counts); the coordinates x are deviations from it.
 class NonlinearMeshCore {
  public:
   NonlinearMeshCore() = default;
@@ -411,30 +440,45 @@ class NonlinearMeshCore {
   NonlinearMeshCore(const NonlinearMeshCore&) = delete;
   NonlinearMeshCore& operator=(const NonlinearMeshCore&) = delete;
 
-  /// n, the number of coordinates the core reads and loads.
+  /// n = 12 + num_internal_coordinates(), the number of coordinates the core reads and loads.
   virtual int num_coordinates() const = 0;
+  /// Number of internal coordinates (after the 12 of the two bodies); 0 by default.
+  virtual int num_internal_coordinates() const { return 0; }
   /// P: the core's forces are periodic in θ with period 2π·P (1 unless teeth differ).
   virtual std::int64_t period_meshes() const { return 1; }
   /// A fresh per-thread workspace.
   virtual std::unique_ptr<NonlinearMeshCoreWorkspace> MakeWorkspace() const = 0;
+  /// @brief The mass the core adds on its coordinates x (n×n, symmetric) [kg, kg·m, kg·m²]: the
+  /// internal block and its coupling to the 12 body coordinates (and, when the core takes mass
+  /// out of a body, e.g. the teeth out of a gear trunk, a negative correction of the 12×12 block).
+  /// The system mass plus this stays positive definite. Zero by default.
+  virtual MatrixX InternalMass() const {
+    return MatrixX::Zero(num_coordinates(), num_coordinates());
+  }
+  /// Number of switching functions (NonlinearMeshCoreOutput::switching); 0 by default.
+  virtual int num_switching_functions() const { return 0; }
+  /// Names (with units) of the diagnostic channels CalcForces writes to out->channels; none by
+  /// default.
+  virtual std::vector<std::string> channel_names() const { return {}; }
 
-  /// An output sized for this core (force n, stiffness and damping n×n, zero).
+  /// An output sized for this core (force n, stiffness and damping n×n, channels, zero).
   NonlinearMeshCoreOutput MakeOutput() const;
 
   /// @brief Forces (and optionally their Jacobians) at one state.
   /// @param[in,out] ws workspace from MakeWorkspace().
-  /// @param[in] theta mesh phase [rad].
+  /// @param[in] theta mesh phase θ [rad]. @param[in] theta_rate θ̇ [rad/s].
   /// @param[in] x (n) coordinates [m, rad]. @param[in] v (n) velocities [m/s, rad/s].
   /// @param[in] with_jacobians fill out->stiffness and out->damping too.
   /// @param[out] out from MakeOutput() (not resized).
-  /// @throws InvalidInput naming x, v or out when a size differs from n.
-  void CalcForces(NonlinearMeshCoreWorkspace& ws, double theta, const Eigen::Ref<const VectorX>& x,
-                  const Eigen::Ref<const VectorX>& v, bool with_jacobians,
-                  NonlinearMeshCoreOutput* out) const;
+  /// @throws InvalidInput naming theta, theta_rate, x, v or out when non-finite or a size
+  ///   differs from n.
+  void CalcForces(NonlinearMeshCoreWorkspace& ws, double theta, double theta_rate,
+                  const Eigen::Ref<const VectorX>& x, const Eigen::Ref<const VectorX>& v,
+                  bool with_jacobians, NonlinearMeshCoreOutput* out) const;
 
  protected:
   /// Implementation of CalcForces; sizes already checked.
-  virtual void DoCalcForces(NonlinearMeshCoreWorkspace& ws, double theta,
+  virtual void DoCalcForces(NonlinearMeshCoreWorkspace& ws, double theta, double theta_rate,
                             const Eigen::Ref<const VectorX>& x, const Eigen::Ref<const VectorX>& v,
                             bool with_jacobians, NonlinearMeshCoreOutput* out) const = 0;
 };

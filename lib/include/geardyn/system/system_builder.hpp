@@ -63,7 +63,8 @@ class SystemBuilder {
 
   /// @brief Adds a gear mesh between body_i (pinion, G columns 0–5) and body_j (columns 6–11).
   /// @param[in] G (2×12) mesh Jacobian [-, m] (spec 01 §3).
-  /// @param[in] core the mesh core (a NonlinearMeshCore must have 12 coordinates, [q_i; q_j]).
+  /// @param[in] core the mesh core (a NonlinearMeshCore reads [q_i; q_j] and then its internal
+  ///   coordinates: num_coordinates() = 12 + num_internal_coordinates()).
   /// @param[in] equivalent_mass m_e [kg] of the mesh mode along η for a damping ratio; absent:
   ///   computed at Build() as 1 / (g M_pair⁻¹ gᵀ) with g = row η of G and M_pair the two
   ///   bodies' 6×6 mass blocks.
