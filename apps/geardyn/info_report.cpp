@@ -1,5 +1,6 @@
 #include "geardyn/info_report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <numeric>
@@ -101,6 +102,15 @@ json MeshReport(const Scene& scene, const MeshDef& mesh) {
   json warnings = json::array();
   for (const std::string& w : g.warnings) warnings.push_back("mesh." + mesh.name + ": " + w);
   for (const std::string& w : iso.warnings) warnings.push_back("mesh." + mesh.name + ": " + w);
+  // The model's own notes (drive-sign fallbacks, keys without effect on the built core), as the
+  // analyses print them; the mean operator suffices (ε, the costly part with tooth errors, only
+  // adds its own size checks, which the analyses that need it report).
+  for (const std::string& w : BuildMeshCore(scene, mesh, /*transmission_error=*/false).warnings) {
+    // Already "mesh.NAME: …"; the ISO notes among them are listed above.
+    if (std::find(warnings.begin(), warnings.end(), json(w)) == warnings.end()) {
+      warnings.push_back(w);
+    }
+  }
   r["warnings"] = warnings;
   return r;
 }

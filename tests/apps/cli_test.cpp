@@ -159,6 +159,30 @@ TEST(CliTest, SetOverridesAValueWithoutEditingTheFile) {
               base["meshes"][0]["base_radius_pinion"].get<double>(), 0.0);
 }
 
+// `info` prints the mesh model's own notes as the analyses do. Truth: mesh_model_test proves that
+// table_samples has no effect on a mesh without transmission error (the core is the same at every
+// θ with and without the key), which is what the warning says.
+TEST(CliTest, InfoShowsTheMeshModelWarningsTheAnalysesPrint) {
+  const std::vector<std::string> args = {"info", "builtin:helical-pair", "--set",
+                                         "mesh.pinion-wheel.table_samples=64"};
+  const CliRun text = RunGeardyn(args);
+  ASSERT_EQ(text.code, kExitOk) << text.err;
+  EXPECT_NE(text.out.find("warning: mesh.pinion-wheel: table_samples has no effect"),
+            std::string::npos)
+      << text.out;
+  const nlohmann::json r = RunJson(args);
+  int count = 0;
+  for (const nlohmann::json& w : r["meshes"][0]["warnings"]) {
+    if (w.get<std::string>().find("table_samples has no effect") != std::string::npos) ++count;
+  }
+  EXPECT_EQ(count, 1);
+  // A scene without such a key has no model warning.
+  const nlohmann::json plain = RunJson({"info", "builtin:helical-pair"});
+  for (const nlohmann::json& w : plain["meshes"][0]["warnings"]) {
+    EXPECT_EQ(w.get<std::string>().find("no effect"), std::string::npos) << w;
+  }
+}
+
 TEST(CliTest, OutWritesJsonAndText) {
   const std::filesystem::path dir =
       std::filesystem::path(GEARDYN_BINARY_DIR) / "test-output" / "cli_info";
