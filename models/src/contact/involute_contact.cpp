@@ -1,5 +1,6 @@
 #include "geardyn/models/contact/involute_contact.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -40,13 +41,26 @@ FlankContact CalcInvoluteContact(const InvoluteFlankPose& flank1, const Involute
   out.point2 = flank2.center - r2 * m - rho2 * n;
   out.point = 0.5 * (out.point1 + out.point2);
   out.valid = rho1 >= flank1.roll_min && rho1 <= flank1.roll_max && rho2 >= flank2.roll_min &&
-              rho2 <= flank2.roll_max;
+              rho2 <= flank2.roll_max &&
+              std::abs(out.penetration) <= std::min(flank1.max_depth, flank2.max_depth);
   // Closed-form derivatives (see the header).
   out.d_penetration << n.x(), n.y(), -eps * r1, -n.x(), -n.y(), -eps * r2;
   const Vector2 dt = ep / c + (eps * r / (c * length)) * e;  // ∂t1/∂c2 = −∂t1/∂c1
   const Vector2 g1 = eps * r1 * dt, g2 = eps * r2 * dt;
   out.d_roll1 << -g1.x(), -g1.y(), -eps * r1, g1.x(), g1.y(), 0.0;
   out.d_roll2 << -g2.x(), -g2.y(), 0.0, g2.x(), g2.y(), -eps * r2;
+  // ∂t1/∂pose = [−dt, 0, dt, 0]; ∂P1 = [I 0 0 0] + (r1 J m + ρ1 ε m) ∂t1 + n ∂ρ1, and
+  // ∂P2 = [0 0 I 0] − (r2 J m + ρ2 ε m) ∂t1 − n ∂ρ2.
+  PoseGradient dt1;
+  dt1 << -dt.x(), -dt.y(), 0.0, dt.x(), dt.y(), 0.0;
+  const Vector2 a1 = r1 * Perp(m) + rho1 * eps * m;
+  const Vector2 a2 = r2 * Perp(m) + rho2 * eps * m;
+  Eigen::Matrix<double, 2, 6> dp = (a1 - a2) * dt1 + n * (out.d_roll1 - out.d_roll2);
+  dp(0, 0) += 1.0;
+  dp(1, 1) += 1.0;
+  dp(0, 3) += 1.0;
+  dp(1, 4) += 1.0;
+  out.d_point = 0.5 * dp;
   return out;
 }
 

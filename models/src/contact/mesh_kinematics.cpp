@@ -14,19 +14,29 @@ constexpr int kMaxSlices = 1000;
 
 using PoseJacobian = Eigen::Matrix<double, 3, 6>;  // ∂(cx, cy, β)/∂(x, y, z, θx, θy, θz)
 
-// The pose Jacobian of the @file of mesh_kinematics.hpp, the contact point P held fixed.
-PoseJacobian SliceJacobian(const GearSlicePose& pose, double dz, const Vector2& point) {
+// ∂(cx, cy, φ)/∂q_k of a slice pose without the axial term.
+PoseJacobian SliceJacobian(double dz) {
   PoseJacobian j = PoseJacobian::Zero();
   j(0, 0) = 1.0;
   j(0, 4) = dz;  // θy moves the slice centre by +θy Δz along X
   j(1, 1) = 1.0;
   j(1, 3) = -dz;  // θx moves it by −θx Δz along Y
-  const double f = pose.helix_factor;
-  j(2, 2) = -f;  // axial shift acts as a rotation −f z
-  j(2, 3) = -f * (point.y() - pose.center.y());
-  j(2, 4) = f * (point.x() - pose.center.x());
   j(2, 5) = 1.0;
   return j;
+}
+
+// Δ = −f w(P) = −f (z + θx (P_y − c_y) − θy (P_x − c_x)): its explicit gradient with respect to
+// q_k (P, c held) and to P (∂Δ/∂c = −∂Δ/∂P).
+Eigen::Matrix<double, 1, 6> AxialGradientQ(const GearSlicePose& pose, const Vector2& point) {
+  Eigen::Matrix<double, 1, 6> g = Eigen::Matrix<double, 1, 6>::Zero();
+  const double f = pose.helix_factor;
+  g(2) = -f;
+  g(3) = -f * (point.y() - pose.center.y());
+  g(4) = f * (point.x() - pose.center.x());
+  return g;
+}
+Eigen::Matrix<double, 1, 2> AxialGradientP(const GearSlicePose& pose) {
+  return -pose.helix_factor * Eigen::Matrix<double, 1, 2>(-pose.tilt.y(), pose.tilt.x());
 }
 
 }  // namespace
@@ -114,17 +124,35 @@ SliceToothContact ContactMeshKinematics::EvalToothPair(const Vector12& q, double
   SliceToothContact out;
   out.transverse = CalcInvoluteContact(f1, f2);
   if (!out.transverse.found) return out;
-  Vector2 point = out.transverse.point;
+  const double y = slice_position(slice);
+  const double zs = frame_.reference_point.z() + y;
+  // D = ∂(c1, β1, c2, β2)/∂[q_pair, θ] (6×13) of the poses without the axial term.
+  Eigen::Matrix<double, 6, 13> d_pose = Eigen::Matrix<double, 6, 13>::Zero();
+  d_pose.block<3, 6>(0, 0) = SliceJacobian(zs - frame_.pinion_center.z());
+  d_pose.block<3, 6>(3, 6) = SliceJacobian(zs - frame_.gear_center.z());
+  const double dbeta1 = s_ / static_cast<double>(pinion_.teeth);
+  const double dbeta2 = -s_ / static_cast<double>(gear_.teeth);
+  d_pose(2, 12) = dbeta1;
+  d_pose(5, 12) = dbeta2;
   if (p1.helix_factor != 0.0 || p2.helix_factor != 0.0) {
-    // Axial displacement at the contact point acts as a rotation (helical only).
+    // Axial displacement at the contact point P (of the pass without it) acts as a rotation
+    // Δ_k = −f_k w_k(P) (helical only); its gradient includes P's own dependence on the state.
+    const Vector2 point = out.transverse.point;
+    const Eigen::Matrix<double, 2, 13> d_point = out.transverse.d_point * d_pose;
+    Eigen::Matrix<double, 1, 13> dd1 = AxialGradientP(p1) * d_point;
+    Eigen::Matrix<double, 1, 13> dd2 = AxialGradientP(p2) * d_point;
+    dd1 -= AxialGradientP(p1) * d_pose.block<2, 13>(0, 0);
+    dd2 -= AxialGradientP(p2) * d_pose.block<2, 13>(3, 0);
+    dd1.segment<6>(0) += AxialGradientQ(p1, point);
+    dd2.segment<6>(6) += AxialGradientQ(p2, point);
+    d_pose.row(2) += dd1;
+    d_pose.row(5) += dd2;
     f1.base_angle += p1.AngleAt(point) - p1.angle;
     f2.base_angle += p2.AngleAt(point) - p2.angle;
     out.transverse = CalcInvoluteContact(f1, f2);
     if (!out.transverse.found) return out;
   }
   const FlankContact& t = out.transverse;
-  const double y = slice_position(slice);
-  const double zs = frame_.reference_point.z() + y;
   // Normal penetration δ_n = δ_t cos β_b − e and its pose gradient.
   PoseGradient grad = cos_base_helix_ * t.d_penetration;
   if (modifications_ && !modifications_->empty()) {
@@ -135,22 +163,18 @@ SliceToothContact ContactMeshKinematics::EvalToothPair(const Vector12& q, double
     grad -= e1.slope * t.d_roll1 + e2.slope * t.d_roll2;
   }
   out.penetration = cos_base_helix_ * t.penetration - out.separation;
-  const PoseJacobian j1 = SliceJacobian(p1, zs - frame_.pinion_center.z(), point);
-  const PoseJacobian j2 = SliceJacobian(p2, zs - frame_.gear_center.z(), point);
-  out.d_penetration.head<6>() = (grad.head<3>() * j1).transpose();
-  out.d_penetration.tail<6>() = (grad.tail<3>() * j2).transpose();
-  const double dbeta1 = s_ / static_cast<double>(pinion_.teeth);
-  const double dbeta2 = -s_ / static_cast<double>(gear_.teeth);
-  out.d_penetration_d_phase = grad(2) * dbeta1 + grad(5) * dbeta2;
+  const Eigen::Matrix<double, 1, 13> full = grad * d_pose;
+  out.d_penetration = full.head<12>().transpose();
+  out.d_penetration_d_phase = full(12);
   out.point = Vector3(t.point.x(), t.point.y(), zs);
   out.sigma = (out.point - frame_.reference_point).dot(frame_.sigma);
   if (q_rate != nullptr) {
     out.approach_rate = out.d_penetration.dot(*q_rate) + out.d_penetration_d_phase * theta_rate;
-    Vector3 r1 = j1 * q_rate->head<6>();
-    Vector3 r2 = j2 * q_rate->tail<6>();
-    r1.z() += dbeta1 * theta_rate;
-    r2.z() += dbeta2 * theta_rate;
-    out.sliding_rate = CalcContactRates(t, f1.center, r1, f2.center, r2).sliding;
+    Eigen::Matrix<double, 13, 1> rate;
+    rate << *q_rate, theta_rate;
+    const Eigen::Matrix<double, 6, 1> pose_rate = d_pose * rate;
+    out.sliding_rate =
+        CalcContactRates(t, f1.center, pose_rate.head<3>(), f2.center, pose_rate.tail<3>()).sliding;
   }
   return out;
 }

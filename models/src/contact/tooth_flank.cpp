@@ -61,6 +61,7 @@ InvoluteFlankPose MakeFlankPose(const ToothFlankGeometry& geometry, const Vector
   f.unwind = unwind;
   f.roll_min = geometry.form_roll();
   f.roll_max = geometry.tip_roll();
+  f.max_depth = 0.5 * geometry.base_radius * geometry.angular_pitch();
   return f;
 }
 

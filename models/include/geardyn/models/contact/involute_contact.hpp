@@ -46,7 +46,8 @@ struct FlankContact {
   /// base circles overlap, C ≤ r1 + r2); all other fields are then unset.
   bool found = false;
   /// True when both roll distances lie within [ρ_F, ρ_a] of their flanks (the contact point is
-  /// on the usable involute of both teeth).
+  /// on the usable involute of both teeth) and |δ| ≤ min(max_depth) (the flanks face each
+  /// other, not a tooth k pitches away).
   bool valid = false;
   double penetration = 0.0;           ///< δ [m] along n (> 0 overlap)
   Vector2 point = Vector2::Zero();    ///< contact point, midway between the flank points [m]
@@ -59,6 +60,9 @@ struct FlankContact {
   PoseGradient d_penetration = PoseGradient::Zero();  ///< ∂δ/∂pose [-, m]
   PoseGradient d_roll1 = PoseGradient::Zero();        ///< ∂ρ1/∂pose [-, m]
   PoseGradient d_roll2 = PoseGradient::Zero();        ///< ∂ρ2/∂pose [-, m]
+  /// ∂(point)/∂pose (2×6) [-, m]: from P1 = c1 + r1 m + ρ1 n, P2 = c2 − r2 m − ρ2 n with
+  /// ∂m = J m ∂t1, ∂n = ε m ∂t1.
+  Eigen::Matrix<double, 2, 6> d_point = Eigen::Matrix<double, 2, 6>::Zero();
 };
 
 /// @brief Kinematic rates at a contact.

@@ -17,7 +17,8 @@
 /// with z) and w_k(P) = z + θ_x (P_y − c_y) − θ_y (P_x − c_x) the axial displacement of the body's
 /// material at the contact point P: an axial shift of a helical gear acts like a rotation. P is
 /// the contact point of the same pair evaluated without the axial term (one extra kernel call,
-/// helical only); the difference to the exact point is of second order in the small coordinates.
+/// helical only; it differs from the final point by second order in the small coordinates). The
+/// gradients are exact for the function so defined (P's own dependence on q and θ included).
 /// The normal penetration is δ_n = δ_t cos β_b − e (e: FlankModifications).
 ///
 /// **The B–S link.** For every contact, ∂δ_n/∂q_pair = [1, −σ] G with G = CalcMeshJacobian(frame)

@@ -73,6 +73,10 @@ struct InvoluteFlankPose {
   int unwind = 1;                    ///< ε = ±1, unwinding sense (the @file)
   double roll_min = 0.0;             ///< ρ_F, roll distance of the form circle [m]
   double roll_max = 0.0;             ///< ρ_a, roll distance of the tip circle [m]
+  /// Largest |δ| of a contact of this flank [m]: half the base pitch π r_b / z. The common
+  /// tangent also meets the flanks of the wrong mating tooth, k base pitches away (δ ± k p_b);
+  /// true contacts stay far below half a pitch, so this bound tells them apart.
+  double max_depth = 0.0;
 };
 
 /// @brief The pose of one flank of a tooth of a rigid (or rigidly displaced) tooth.
@@ -80,7 +84,7 @@ struct InvoluteFlankPose {
 /// @param[in] center c, centre of the (effective) base circle [m].
 /// @param[in] centerline_angle γ, world angle of the tooth's centre line [rad].
 /// @param[in] unwind ε = ±1 of the flank (the drive flank has ε = −s, the coast flank ε = +s).
-/// @return β = γ − ε ψ_b with the roll limits of `geometry`.
+/// @return β = γ − ε ψ_b with the roll limits of `geometry` and max_depth = π r_b / z.
 InvoluteFlankPose MakeFlankPose(const ToothFlankGeometry& geometry, const Vector2& center,
                                 double centerline_angle, int unwind);
 
