@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/models/contact/tip_corner_contact.hpp"
 
 namespace geardyn {
 
@@ -121,8 +122,17 @@ SliceToothContact ContactMeshKinematics::EvalToothPair(const Vector12& q, double
   const double g2 = p2.layout.first_tooth_angle + p2.layout.sense * tooth2 * gear_.angular_pitch();
   InvoluteFlankPose f1 = MakeFlankPose(pinion_, p1.center, g1, eps);
   InvoluteFlankPose f2 = MakeFlankPose(gear_, p2.center, g2, eps);
+  // Flank–flank contact, or a tip corner where the involute point lies beyond a flank's end.
+  auto contact = [&](const InvoluteFlankPose& a, const InvoluteFlankPose& b) {
+    const FlankContact c = CalcInvoluteContact(a, b);
+    if (!c.found || c.valid) return c;
+    if (c.roll1 > a.roll_max) return CalcTipCornerContact(a, pinion_.tip_corner_radius, b);
+    if (c.roll2 > b.roll_max)
+      return SwapBodies(CalcTipCornerContact(b, gear_.tip_corner_radius, a));
+    return c;
+  };
   SliceToothContact out;
-  out.transverse = CalcInvoluteContact(f1, f2);
+  out.transverse = contact(f1, f2);
   if (!out.transverse.found) return out;
   const double y = slice_position(slice);
   const double zs = frame_.reference_point.z() + y;
@@ -149,7 +159,7 @@ SliceToothContact ContactMeshKinematics::EvalToothPair(const Vector12& q, double
     d_pose.row(5) += dd2;
     f1.base_angle += p1.AngleAt(point) - p1.angle;
     f2.base_angle += p2.AngleAt(point) - p2.angle;
-    out.transverse = CalcInvoluteContact(f1, f2);
+    out.transverse = contact(f1, f2);
     if (!out.transverse.found) return out;
   }
   const FlankContact& t = out.transverse;

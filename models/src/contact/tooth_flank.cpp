@@ -16,6 +16,11 @@ double ToothFlankGeometry::tip_roll() const {
   return std::sqrt(std::max(0.0, tip_radius * tip_radius - base_radius * base_radius));
 }
 
+double ToothFlankGeometry::corner_roll() const {
+  const double rc = tip_radius - tip_corner_radius;
+  return tip_corner_radius + std::sqrt(std::max(0.0, rc * rc - base_radius * base_radius));
+}
+
 double ToothFlankGeometry::angular_pitch() const { return 2.0 * std::numbers::pi / teeth; }
 
 ToothFlankGeometry MakeToothFlankGeometry(const GearPairGeometry& pair, const GearGeometry& member,
@@ -60,7 +65,7 @@ InvoluteFlankPose MakeFlankPose(const ToothFlankGeometry& geometry, const Vector
   f.base_angle = centerline_angle - unwind * geometry.base_half_angle;  // β = γ − ε ψ_b
   f.unwind = unwind;
   f.roll_min = geometry.form_roll();
-  f.roll_max = geometry.tip_roll();
+  f.roll_max = geometry.corner_roll();
   f.max_depth = 0.5 * geometry.base_radius * geometry.angular_pitch();
   return f;
 }

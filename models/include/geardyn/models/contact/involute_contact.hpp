@@ -49,6 +49,9 @@ struct FlankContact {
   /// on the usable involute of both teeth) and |δ| ≤ min(max_depth) (the flanks face each
   /// other, not a tooth k pitches away).
   bool valid = false;
+  /// 0: flank–flank contact; 1 or 2: the tip corner of body 1 or 2 against the other's flank
+  /// (tip_corner_contact.hpp); the radius of curvature at the corner is its corner radius ρ_a.
+  int corner = 0;
   double penetration = 0.0;           ///< δ [m] along n (> 0 overlap)
   Vector2 point = Vector2::Zero();    ///< contact point, midway between the flank points [m]
   Vector2 point1 = Vector2::Zero();   ///< P1(ρ1) on flank 1 [m]

@@ -95,7 +95,10 @@ class ContactMeshKinematics {
                                                      int slice) const;
 
   /// @brief Contact of pinion tooth i1 with gear tooth i2 on one side in one slice, with the
-  /// derivatives of the @file. Rates are optional (zero when not given).
+  /// derivatives of the @file. Where the flank–flank point lies beyond a flank's end (ρ > ρ_t),
+  /// the tip corner of that tooth against the mate's flank is returned instead
+  /// (tip_corner_contact.hpp; transverse.corner = 1 pinion tip, 2 gear tip). Rates are optional
+  /// (zero when not given).
   SliceToothContact EvalToothPair(const Vector12& q_pair, double theta, int slice, int tooth1,
                                   int tooth2, FlankSide side, const Vector12* q_rate = nullptr,
                                   double theta_rate = 0.0) const;

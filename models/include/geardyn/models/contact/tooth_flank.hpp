@@ -49,6 +49,11 @@ struct ToothFlankGeometry {
   double form_roll() const;
   /// ρ_a = √(r_a² − r_b²), roll distance of the tip circle [m].
   double tip_roll() const;
+  /// ρ_t = ρ_a + √((r_a − ρ_a)² − r_b²), roll distance where the tip-corner circle (radius
+  /// ρ_a, tangent to the flank and to the tip circle) meets the flank [m]; the involute ends
+  /// there (= tip_roll() when ρ_a = 0). From |Q − c|² = r_b² + (ρ_t − ρ_a)² for the corner centre
+  /// Q = P(ρ_t) − ρ_a n(ρ_t) on the circle of radius r_a − ρ_a.
+  double corner_roll() const;
   /// Angular pitch 2π/z [rad].
   double angular_pitch() const;
 };
@@ -72,7 +77,7 @@ struct InvoluteFlankPose {
   double base_angle = 0.0;           ///< β, where the involute leaves the base circle [rad]
   int unwind = 1;                    ///< ε = ±1, unwinding sense (the @file)
   double roll_min = 0.0;             ///< ρ_F, roll distance of the form circle [m]
-  double roll_max = 0.0;             ///< ρ_a, roll distance of the tip circle [m]
+  double roll_max = 0.0;  ///< ρ_t, end of the involute: the tip circle or the corner [m]
   /// Largest |δ| of a contact of this flank [m]: half the base pitch π r_b / z. The common
   /// tangent also meets the flanks of the wrong mating tooth, k base pitches away (δ ± k p_b);
   /// true contacts stay far below half a pitch, so this bound tells them apart.
@@ -84,7 +89,8 @@ struct InvoluteFlankPose {
 /// @param[in] center c, centre of the (effective) base circle [m].
 /// @param[in] centerline_angle γ, world angle of the tooth's centre line [rad].
 /// @param[in] unwind ε = ±1 of the flank (the drive flank has ε = −s, the coast flank ε = +s).
-/// @return β = γ − ε ψ_b with the roll limits of `geometry` and max_depth = π r_b / z.
+/// @return β = γ − ε ψ_b with the roll limits [ρ_F, ρ_t] of `geometry` (corner_roll()) and
+///   max_depth = π r_b / z.
 InvoluteFlankPose MakeFlankPose(const ToothFlankGeometry& geometry, const Vector2& center,
                                 double centerline_angle, int unwind);
 
