@@ -26,6 +26,22 @@ void StepRange(double first, double pitch, double a, double w, long long* j0, lo
 
 int Wrap(long long j, int z) { return static_cast<int>(((j % z) + z) % z); }
 
+// Range of h = ρ sin φ (signed distance from the line of centres) over ρ ∈ [lo, hi] and
+// φ ∈ [a − w, a + w] (|φ| < π/2 on the lens; outside, the whole range [−hi, hi]).
+void OffsetRange(double a, double w, double lo, double hi, double* h0, double* h1) {
+  const double p0 = a - w, p1 = a + w;
+  if (p0 <= -0.5 * std::numbers::pi || p1 >= 0.5 * std::numbers::pi) {
+    *h0 = -hi;
+    *h1 = hi;
+    return;
+  }
+  const double s0 = std::sin(p0), s1 = std::sin(p1);
+  *h0 = std::min({lo * s0, hi * s0});
+  *h1 = std::max({lo * s1, hi * s1});
+}
+
+constexpr int kMaxWindowTeeth = 64;
+
 }  // namespace
 
 int FindCandidatePairs(const ToothFlankGeometry& geometry1, const ToothLayout& layout1,
@@ -47,11 +63,37 @@ int FindCandidatePairs(const ToothFlankGeometry& geometry1, const ToothLayout& l
   // A window wider than the circle holds every tooth once.
   j11 = std::min(j11, j10 + geometry1.teeth - 1);
   j21 = std::min(j21, j20 + geometry2.teeth - 1);
+  // Pair only teeth whose offsets h from the line of centres can coincide: a common point X
+  // has ρ1 sin φ1 = −ρ2 sin φ2 (φ_k its polar angle from ê resp. −ê), ρ_k ∈ [C − r_a,mate, r_ak].
+  const long long n1 = j11 - j10 + 1, n2 = j21 - j20 + 1;
+  const bool filter = n1 <= kMaxWindowTeeth && n2 <= kMaxWindowTeeth;
+  double h2lo[kMaxWindowTeeth], h2hi[kMaxWindowTeeth];
+  const double lo1 = std::max(0.0, c - geometry2.tip_radius);
+  const double lo2 = std::max(0.0, c - geometry1.tip_radius);
+  const double half1 = geometry1.base_half_angle + margin;
+  const double half2 = geometry2.base_half_angle + margin;
+  if (filter) {
+    for (long long j2 = j20; j2 <= j21; ++j2) {
+      const double phi = std::remainder(
+          layout2.first_tooth_angle + static_cast<double>(j2) * p2 - a2, 2.0 * std::numbers::pi);
+      double h0 = 0.0, h1 = 0.0;
+      OffsetRange(phi, half2, lo2, geometry2.tip_radius, &h0, &h1);
+      h2lo[j2 - j20] = -h1;  // h = −ρ2 sin φ2
+      h2hi[j2 - j20] = -h0;
+    }
+  }
   int count = 0;
   const int capacity = static_cast<int>(out.size());
   for (long long j1 = j10; j1 <= j11; ++j1) {
     const int i1 = Wrap(layout1.sense * j1, geometry1.teeth);
+    double h0 = 0.0, h1 = 0.0;
+    if (filter) {
+      const double phi = std::remainder(
+          layout1.first_tooth_angle + static_cast<double>(j1) * p1 - a1, 2.0 * std::numbers::pi);
+      OffsetRange(phi, half1, lo1, geometry1.tip_radius, &h0, &h1);
+    }
     for (long long j2 = j20; j2 <= j21; ++j2) {
+      if (filter && (h2hi[j2 - j20] < h0 || h2lo[j2 - j20] > h1)) continue;
       if (count < capacity) out[count] = {i1, Wrap(layout2.sense * j2, geometry2.teeth)};
       ++count;
     }

@@ -11,8 +11,12 @@
 /// centre line at γ occupies the polar angles γ ± ψ_b (the involute narrows outwards from the
 /// base circle, where its half angle is ψ_b; the fillet below r_b is taken as no wider), widened
 /// by a caller's margin for tooth deflections. Every tooth whose window meets the lens window is
-/// a candidate; every pair of candidates is returned (both flanks of a pair are then checked by
-/// the kernel). A pair outside this list cannot touch (tested against an all-pairs search).
+/// a candidate. Two candidates are paired only when their offsets from the line of centres can
+/// coincide: a common point X has h = ρ1 sin φ1 = −ρ2 sin φ2 (φ_k its polar angle from ê and
+/// −ê, ρ_k ∈ [C − r_a,mate, r_ak]), so the intervals of h over the two tooth windows must overlap
+/// (an exact superset test; on the 50/50 rig it keeps about 10 of 25 pairs). Both flanks of a
+/// pair are then checked by the kernel. A pair outside this list cannot touch (tested against
+/// an all-pairs search).
 #pragma once
 
 #include <span>
