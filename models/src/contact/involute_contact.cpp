@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace geardyn {
@@ -12,8 +13,17 @@ Vector2 Perp(const Vector2& a) { return {-a.y(), a.x()}; }  // J a, rotation by 
 
 }  // namespace
 
+bool IsFinite(const InvoluteFlankPose& f) {
+  return std::isfinite(f.center.x()) && std::isfinite(f.center.y()) &&
+         std::isfinite(f.base_angle) && std::isfinite(f.base_radius);
+}
+
 FlankContact CalcInvoluteContact(const InvoluteFlankPose& flank1, const InvoluteFlankPose& flank2) {
   FlankContact out;
+  if (!IsFinite(flank1) || !IsFinite(flank2)) {
+    out.penetration = std::numeric_limits<double>::quiet_NaN();  // never "no contact" silently
+    return out;
+  }
   const int eps = flank1.unwind;
   if (flank2.unwind != eps) return out;  // opposite senses never meet on an external pair
   const Vector2 d = flank2.center - flank1.center;

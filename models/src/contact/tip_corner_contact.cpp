@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace geardyn {
@@ -22,6 +23,10 @@ bool Between(const Vector2& a, const Vector2& b, const Vector2& u) {
 FlankContact CalcTipCornerContact(const InvoluteFlankPose& corner_flank, double corner_radius,
                                   const InvoluteFlankPose& mate) {
   FlankContact out;
+  if (!IsFinite(corner_flank) || !IsFinite(mate) || !std::isfinite(corner_radius)) {
+    out.penetration = std::numeric_limits<double>::quiet_NaN();
+    return out;
+  }
   const double rba = corner_flank.base_radius, rbb = mate.base_radius;
   const int ea = corner_flank.unwind, eb = mate.unwind;
   // Corner centre Q on the corner flank's inward normal at ρ_t.

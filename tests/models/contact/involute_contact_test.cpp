@@ -168,6 +168,10 @@ TEST(InvoluteContactTest, NoContactForOppositeSensesOrOverlappingBaseCircles) {
   EXPECT_FALSE(CalcInvoluteContact(s.f1, f2).found);
   f2.center = Vector2(NAN, 0.0);
   EXPECT_FALSE(CalcInvoluteContact(s.f1, f2).found);
+  EXPECT_TRUE(std::isnan(CalcInvoluteContact(s.f1, f2).penetration));  // not a silent "open"
+  f2 = s.f2;
+  f2.base_angle = INFINITY;
+  EXPECT_TRUE(std::isnan(CalcInvoluteContact(s.f1, f2).penetration));
   // A roll outside [ρ_F, ρ_a] or a wrong tooth (|δ| > max_depth) is found but not valid.
   f2 = s.f2;
   f2.roll_max = 1e-3;

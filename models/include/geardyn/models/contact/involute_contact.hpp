@@ -43,7 +43,9 @@ using PoseGradient = Eigen::Matrix<double, 1, 6>;
 /// @brief Result of one flank–flank (or tip-corner–flank) contact evaluation.
 struct FlankContact {
   /// False when the flanks cannot touch on a common tangent (unwinding senses differ, or the
-  /// base circles overlap, C ≤ r1 + r2); all other fields are then unset.
+  /// base circles overlap, C ≤ r1 + r2); all other fields are then unset, except that a
+  /// non-finite input gives penetration = NaN (callers report a numerical issue, never "no
+  /// contact").
   bool found = false;
   /// True when both roll distances lie within [ρ_F, ρ_a] of their flanks (the contact point is
   /// on the usable involute of both teeth) and |δ| ≤ min(max_depth) (the flanks face each
@@ -73,6 +75,9 @@ struct ContactRates {
   double approach = 0.0;  ///< δ̇ [m/s]
   double sliding = 0.0;   ///< (v1 − v2)·J n [m/s]
 };
+
+/// @brief True when the pose's centre, base angle and base radius are finite.
+bool IsFinite(const InvoluteFlankPose& flank);
 
 /// @brief The contact of two involute flanks (the @file). Never allocates, never iterates.
 /// @param[in] flank1 pose of the flank of body 1 (the pinion's, by convention).

@@ -66,7 +66,7 @@ struct ToothFlankGeometry {
 /// @param[in] tip_corner_radius ρ_a ≥ 0 [m].
 /// @throws InvalidInput naming "member.kind" (internal gears are not supported by the contact
 ///   geometry), "form_radius" (not below the tip radius) or "tip_corner_radius" (negative, not
-///   finite, or not below the tip thickness).
+///   finite, or not below half the transverse tip thickness).
 ToothFlankGeometry MakeToothFlankGeometry(const GearPairGeometry& pair, const GearGeometry& member,
                                           double form_radius = 0.0, double tip_corner_radius = 0.0);
 
