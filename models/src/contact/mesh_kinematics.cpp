@@ -5,6 +5,7 @@
 
 #include "geardyn/common/check.hpp"
 #include "geardyn/models/contact/tip_corner_contact.hpp"
+#include "geardyn/models/contact/tooth_pose.hpp"
 
 namespace geardyn {
 
@@ -113,53 +114,77 @@ std::pair<GearSlicePose, GearSlicePose> ContactMeshKinematics::SlicePoses(const 
 
 SliceToothContact ContactMeshKinematics::EvalToothPair(const Vector12& q, double theta, int slice,
                                                        int tooth1, int tooth2, FlankSide side,
-                                                       const Vector12* q_rate,
-                                                       double theta_rate) const {
-  const auto [p1, p2] = SlicePoses(q, theta, slice);
+                                                       const Vector12* q_rate, double theta_rate,
+                                                       const ToothPairState* teeth) const {
+  // State columns: [q_pair (12), θ, pinion tooth (ψ, τ_r, τ_t), gear tooth (ψ, τ_r, τ_t)].
+  using Row = Eigen::Matrix<double, 1, kStateSize>;
+  using Slice = Eigen::Matrix<double, 3, kStateSize>;  // ∂(c_k, φ_k)/∂state of a slice pose
+  using Pose = Eigen::Matrix<double, 6, kStateSize>;   // ∂(c′1, β1, c′2, β2)/∂state
+  auto [p1, p2] = SlicePoses(q, theta, slice);
   const int eps = Unwind(side);
-  const double g1 =
-      p1.layout.first_tooth_angle + p1.layout.sense * tooth1 * pinion_.angular_pitch();
-  const double g2 = p2.layout.first_tooth_angle + p2.layout.sense * tooth2 * gear_.angular_pitch();
-  InvoluteFlankPose f1 = MakeFlankPose(pinion_, p1.center, g1, eps);
-  InvoluteFlankPose f2 = MakeFlankPose(gear_, p2.center, g2, eps);
-  // Flank–flank contact, or a tip corner where the involute point lies beyond a flank's end.
-  auto contact = [&](const InvoluteFlankPose& a, const InvoluteFlankPose& b) {
-    const FlankContact c = CalcInvoluteContact(a, b);
-    if (!c.found || c.valid) return c;
-    if (c.roll1 > a.roll_max) return CalcTipCornerContact(a, pinion_.tip_corner_radius, b);
-    if (c.roll2 > b.roll_max)
-      return SwapBodies(CalcTipCornerContact(b, gear_.tip_corner_radius, a));
-    return c;
-  };
-  SliceToothContact out;
-  out.transverse = contact(f1, f2);
-  if (!out.transverse.found) return out;
   const double y = slice_position(slice);
   const double zs = frame_.reference_point.z() + y;
-  // D = ∂(c1, β1, c2, β2)/∂[q_pair, θ] (6×13) of the poses without the axial term.
-  Eigen::Matrix<double, 6, 13> d_pose = Eigen::Matrix<double, 6, 13>::Zero();
-  d_pose.block<3, 6>(0, 0) = SliceJacobian(zs - frame_.pinion_center.z());
-  d_pose.block<3, 6>(3, 6) = SliceJacobian(zs - frame_.gear_center.z());
+  // Tooth centre lines in the gear body frames (relative to the gears' angles).
+  const double rel1 = tooth0_pinion_ + p1.layout.sense * tooth1 * pinion_.angular_pitch();
+  const double rel2 = tooth0_gear_ + p2.layout.sense * tooth2 * gear_.angular_pitch();
+  const ToothDeflection none;
+  const ToothDeflection& d1 = teeth != nullptr ? teeth->pinion : none;
+  const ToothDeflection& d2 = teeth != nullptr ? teeth->gear : none;
+  Slice s1 = Slice::Zero(), s2 = Slice::Zero();
+  s1.block<3, 6>(0, 0) = SliceJacobian(zs - frame_.pinion_center.z());
+  s2.block<3, 6>(0, 6) = SliceJacobian(zs - frame_.gear_center.z());
   const double dbeta1 = s_ / static_cast<double>(pinion_.teeth);
   const double dbeta2 = -s_ / static_cast<double>(gear_.teeth);
-  d_pose(2, 12) = dbeta1;
-  d_pose(5, 12) = dbeta2;
+  s1(2, 12) = dbeta1;
+  s2(2, 12) = dbeta2;
+  double angle1 = p1.angle, angle2 = p2.angle;
+  InvoluteFlankPose f1, f2;
+  Pose d_pose;
+  // Flank poses of the (deflected) teeth at the gear angles and their gradient.
+  auto place = [&] {
+    const EffectiveBaseCircle e1 =
+        CalcEffectiveBaseCircle(p1.center, angle1, rel1, pinion_.pivot_radius, d1);
+    const EffectiveBaseCircle e2 =
+        CalcEffectiveBaseCircle(p2.center, angle2, rel2, gear_.pivot_radius, d2);
+    f1 = MakeFlankPose(pinion_, e1.center, e1.angle + rel1, eps);
+    f2 = MakeFlankPose(gear_, e2.center, e2.angle + rel2, eps);
+    d_pose.topRows<3>() = e1.jacobian.leftCols<3>() * s1;
+    d_pose.bottomRows<3>() = e2.jacobian.leftCols<3>() * s2;
+    // Direct tooth columns, added to what the gear angles carry (the helical Δ_k depends on the
+    // teeth through P).
+    d_pose.block<3, 3>(0, 13) += e1.jacobian.rightCols<3>();
+    d_pose.block<3, 3>(3, 16) += e2.jacobian.rightCols<3>();
+  };
+  // Flank–flank contact, or a tip corner where the involute point lies beyond a flank's end.
+  auto contact = [&] {
+    const FlankContact c = CalcInvoluteContact(f1, f2);
+    if (!c.found || c.valid) return c;
+    if (c.roll1 > f1.roll_max) return CalcTipCornerContact(f1, pinion_.tip_corner_radius, f2);
+    if (c.roll2 > f2.roll_max) {
+      return SwapBodies(CalcTipCornerContact(f2, gear_.tip_corner_radius, f1));
+    }
+    return c;
+  };
+  place();
+  SliceToothContact out;
+  out.transverse = contact();
+  if (!out.transverse.found) return out;
   if (p1.helix_factor != 0.0 || p2.helix_factor != 0.0) {
-    // Axial displacement at the contact point P (of the pass without it) acts as a rotation
-    // Δ_k = −f_k w_k(P) (helical only); its gradient includes P's own dependence on the state.
+    // Axial displacement at the contact point P (of the pass without it) turns each gear's
+    // section by Δ_k = −f_k w_k(P) (helical only); its gradient includes P's own dependence on
+    // the state. The deflected tooth turns with its gear (Δ enters through ∂c′/∂φ).
     const Vector2 point = out.transverse.point;
-    const Eigen::Matrix<double, 2, 13> d_point = out.transverse.d_point * d_pose;
-    Eigen::Matrix<double, 1, 13> dd1 = AxialGradientP(p1) * d_point;
-    Eigen::Matrix<double, 1, 13> dd2 = AxialGradientP(p2) * d_point;
-    dd1 -= AxialGradientP(p1) * d_pose.block<2, 13>(0, 0);
-    dd2 -= AxialGradientP(p2) * d_pose.block<2, 13>(3, 0);
+    const Eigen::Matrix<double, 2, kStateSize> d_point = out.transverse.d_point * d_pose;
+    Row dd1 = AxialGradientP(p1) * (d_point - s1.topRows<2>());
+    Row dd2 = AxialGradientP(p2) * (d_point - s2.topRows<2>());
     dd1.segment<6>(0) += AxialGradientQ(p1, point);
     dd2.segment<6>(6) += AxialGradientQ(p2, point);
-    d_pose.row(2) += dd1;
-    d_pose.row(5) += dd2;
-    f1.base_angle += p1.AngleAt(point) - p1.angle;
-    f2.base_angle += p2.AngleAt(point) - p2.angle;
-    out.transverse = contact(f1, f2);
+    s1.row(2) += dd1;
+    s2.row(2) += dd2;
+    angle1 = p1.AngleAt(point);
+    angle2 = p2.AngleAt(point);
+    place();
+    out.transverse = contact();
     if (!out.transverse.found) return out;
   }
   const FlankContact& t = out.transverse;
@@ -173,18 +198,29 @@ SliceToothContact ContactMeshKinematics::EvalToothPair(const Vector12& q, double
     grad -= e1.slope * t.d_roll1 + e2.slope * t.d_roll2;
   }
   out.penetration = cos_base_helix_ * t.penetration - out.separation;
-  const Eigen::Matrix<double, 1, 13> full = grad * d_pose;
+  const Row full = grad * d_pose;
   out.d_penetration = full.head<12>().transpose();
   out.d_penetration_d_phase = full(12);
+  out.d_pinion_tooth = full.segment<3>(13);
+  out.d_gear_tooth = full.segment<3>(16);
   out.point = Vector3(t.point.x(), t.point.y(), zs);
   out.sigma = (out.point - frame_.reference_point).dot(frame_.sigma);
-  if (q_rate != nullptr) {
-    out.approach_rate = out.d_penetration.dot(*q_rate) + out.d_penetration_d_phase * theta_rate;
-    Eigen::Matrix<double, 13, 1> rate;
-    rate << *q_rate, theta_rate;
+  if (q_rate != nullptr || teeth != nullptr) {
+    Eigen::Matrix<double, kStateSize, 1> rate = Eigen::Matrix<double, kStateSize, 1>::Zero();
+    if (q_rate != nullptr) rate.head<12>() = *q_rate;
+    rate(12) = theta_rate;
+    if (teeth != nullptr) {
+      rate.segment<3>(13) << teeth->pinion_rate.rotation, teeth->pinion_rate.radial,
+          teeth->pinion_rate.tangential;
+      rate.segment<3>(16) << teeth->gear_rate.rotation, teeth->gear_rate.radial,
+          teeth->gear_rate.tangential;
+    }
+    out.approach_rate = full.dot(rate.transpose());
     const Eigen::Matrix<double, 6, 1> pose_rate = d_pose * rate;
     out.sliding_rate =
         CalcContactRates(t, f1.center, pose_rate.head<3>(), f2.center, pose_rate.tail<3>()).sliding;
+  } else {
+    out.approach_rate = full(12) * theta_rate;
   }
   return out;
 }

@@ -47,6 +47,7 @@ ToothFlankGeometry MakeToothFlankGeometry(const GearPairGeometry& pair, const Ge
                                              << " m must be below half the tip thickness, "
                                              << 0.5 * member.tip_thickness_transverse << " m");
   g.tip_corner_radius = tip_corner_radius;
+  g.pivot_radius = member.root_radius;
   // ψ_b = s_t/(2r) + inv α_t: half the tooth's angular width at the base circle.
   const double alpha_t = pair.transverse_pressure_angle;
   g.base_half_angle = member.tooth_thickness_transverse / (2.0 * member.reference_radius) +

@@ -292,6 +292,110 @@ TEST(ContactMeshKinematicsTest, GradientIsTheBlankenshipSinghInterface) {
   }
 }
 
+// Deflected teeth: a tooth rotation about a pivot at the gear centre is a gear rotation, and a
+// tooth translation is a gear-centre translation (for that tooth), exactly; the tooth-DOF
+// gradients match central differences (spur and helical, with relief, displaced state), and the
+// approach rate is the time derivative of δ_n along a path of all coordinates.
+TEST(ContactMeshKinematicsTest, DeflectedTeeth) {
+  for (const GearPairSpec& spec : {test::UnequalSpurPair(), test::HelicalPair()}) {
+    ContactPairSetup s = MakeContactPair(spec, 1);
+    ToothModifications m;
+    m.pinion_tip_relief = {10e-6, 2.0e-3, ReliefShape::kParabolic};
+    const Vector12 q0 = (Vector12() << 3e-6, -2e-6, 4e-6, 1e-5, -2e-5, 3e-5, -1e-6, 2e-6, -3e-6,
+                         -1e-5, 1.5e-5, -2e-5)
+                            .finished();
+    const double theta = 2 * kPi * 4.3;
+    {  // Pivot at the centre: ψ ≡ θz; translation ≡ centre shift.
+      ToothFlankGeometry pin = s.pinion;
+      pin.pivot_radius = 0.0;
+      const ContactMeshKinematics kin(s.pair, s.frame, pin, s.gear, 2,
+                                      FlankModifications(s.pair, m));
+      for (const auto& c : ValidContacts(kin, q0, theta, 1, FlankSide::kDrive)) {
+        ToothPairState teeth;
+        teeth.pinion.rotation = 2e-5;
+        Vector12 q = q0;
+        q(5) += 2e-5;
+        const SliceToothContact a = kin.EvalToothPair(q0, theta, 1, c.tooth1, c.tooth2,
+                                                      FlankSide::kDrive, nullptr, 0.0, &teeth);
+        const SliceToothContact b =
+            kin.EvalToothPair(q, theta, 1, c.tooth1, c.tooth2, FlankSide::kDrive);
+        EXPECT_NEAR(a.penetration, b.penetration, 1e-15);
+        // Translation along the tooth's radial/tangential axes = the centre moved by them.
+        teeth = {};
+        teeth.pinion.radial = 3e-6;
+        teeth.pinion.tangential = -2e-6;
+        const auto [p1, p2] = kin.SlicePoses(q0, theta, 1);
+        const double axis =
+            p1.layout.first_tooth_angle + p1.layout.sense * c.tooth1 * s.pinion.angular_pitch();
+        q = q0;
+        q(0) += 3e-6 * std::cos(axis) + 2e-6 * std::sin(axis);
+        q(1) += 3e-6 * std::sin(axis) - 2e-6 * std::cos(axis);
+        const SliceToothContact d = kin.EvalToothPair(q0, theta, 1, c.tooth1, c.tooth2,
+                                                      FlankSide::kDrive, nullptr, 0.0, &teeth);
+        const SliceToothContact e =
+            kin.EvalToothPair(q, theta, 1, c.tooth1, c.tooth2, FlankSide::kDrive);
+        // Spur: exact. Helical: the tooth's axes turn with its section (by Δ ≈ f w ≈ 1e-4 rad)
+        // and the tilt's lever is taken from the slice centre, both second order: |τ| Δ ≈ 4e-10.
+        EXPECT_NEAR(d.penetration, e.penetration, s.pinion.helix_factor == 0.0 ? 1e-15 : 1e-9);
+      }
+    }
+    const ContactMeshKinematics kin(s.pair, s.frame, s.pinion, s.gear, 2,
+                                    FlankModifications(s.pair, m));
+    ToothPairState teeth;
+    teeth.pinion = {1e-4, 2e-6, -3e-6};
+    teeth.gear = {-2e-4, -1e-6, 2e-6};
+    teeth.pinion_rate = {0.3, 1e-3, -2e-3};
+    teeth.gear_rate = {-0.2, 2e-3, 1e-3};
+    int checked = 0;
+    for (int slice = 0; slice < 2; ++slice) {
+      for (const auto& c : ValidContacts(kin, q0, theta, slice, FlankSide::kDrive)) {
+        const Vector12 q_rate = Vector12::Constant(1e-3);
+        const double theta_rate = 50.0;
+        const SliceToothContact a = kin.EvalToothPair(
+            q0, theta, slice, c.tooth1, c.tooth2, FlankSide::kDrive, &q_rate, theta_rate, &teeth);
+        ASSERT_TRUE(a.transverse.valid);
+        auto field = [](ToothDeflection& d, int i) -> double& {
+          return i == 0 ? d.rotation : (i == 1 ? d.radial : d.tangential);
+        };
+        for (int k = 0; k < 2; ++k) {
+          for (int i = 0; i < 3; ++i) {
+            const double h = i == 0 ? 1e-7 : 1e-8;
+            ToothPairState tp = teeth, tm = teeth;
+            field(k == 0 ? tp.pinion : tp.gear, i) += h;
+            field(k == 0 ? tm.pinion : tm.gear, i) -= h;
+            const double fd = (kin.EvalToothPair(q0, theta, slice, c.tooth1, c.tooth2,
+                                                 FlankSide::kDrive, nullptr, 0.0, &tp)
+                                   .penetration -
+                               kin.EvalToothPair(q0, theta, slice, c.tooth1, c.tooth2,
+                                                 FlankSide::kDrive, nullptr, 0.0, &tm)
+                                   .penetration) /
+                              (2 * h);
+            const double an = k == 0 ? a.d_pinion_tooth(i) : a.d_gear_tooth(i);
+            EXPECT_NEAR(fd, an, 1e-7 * (1.0 + std::abs(an))) << "tooth " << k << " dof " << i;
+          }
+        }
+        // δ̇ along the path state(t) = state + t·rate.
+        auto at = [&](double t) {
+          ToothPairState tt = teeth;
+          for (int i = 0; i < 3; ++i) {
+            field(tt.pinion, i) += t * field(tt.pinion_rate, i);
+            field(tt.gear, i) += t * field(tt.gear_rate, i);
+          }
+          return kin
+              .EvalToothPair(q0 + t * q_rate, theta + t * theta_rate, slice, c.tooth1, c.tooth2,
+                             FlankSide::kDrive, nullptr, 0.0, &tt)
+              .penetration;
+        };
+        const double ht = 1e-7;
+        EXPECT_NEAR(a.approach_rate, (at(ht) - at(-ht)) / (2 * ht),
+                    1e-6 * std::abs(a.approach_rate) + 1e-9);
+        ++checked;
+      }
+    }
+    EXPECT_GT(checked, 1);
+  }
+}
+
 TEST(ContactMeshKinematicsTest, RejectsBadInput) {
   const ContactPairSetup s = MakeContactPair(test::UnequalSpurPair());
   EXPECT_THROWS_MESSAGE(ContactMeshKinematics(s.pair, s.frame, s.pinion, s.gear, 0), InvalidInput,

@@ -34,6 +34,7 @@
 #include "geardyn/models/contact/flank_relief.hpp"
 #include "geardyn/models/contact/involute_contact.hpp"
 #include "geardyn/models/contact/tooth_flank.hpp"
+#include "geardyn/models/contact/tooth_pose.hpp"
 #include "geardyn/models/mesh/mesh_frame.hpp"
 
 namespace geardyn {
@@ -50,6 +51,14 @@ struct GearSlicePose {
   double AngleAt(const Vector2& point) const;
 };
 
+/// @brief Deflections of the two teeth of a pair (tooth_pose.hpp) and their rates.
+struct ToothPairState {
+  ToothDeflection pinion;       ///< the pinion tooth's ψ [rad], τ_r, τ_t [m]
+  ToothDeflection gear;         ///< the gear tooth's ψ [rad], τ_r, τ_t [m]
+  ToothDeflection pinion_rate;  ///< ψ̇ [rad/s], τ̇_r, τ̇_t [m/s]
+  ToothDeflection gear_rate;    ///< ψ̇ [rad/s], τ̇_r, τ̇_t [m/s]
+};
+
 /// @brief A tooth pair's contact in one slice.
 struct SliceToothContact {
   FlankContact transverse;   ///< the kernel's result, transverse plane (δ_t, ρ1, ρ2, n)
@@ -57,15 +66,21 @@ struct SliceToothContact {
   double separation = 0.0;   ///< e, normal separation of the modifications [m]
   Vector12 d_penetration = Vector12::Zero();  ///< ∂δ_n/∂q_pair [-, m]
   double d_penetration_d_phase = 0.0;         ///< ∂δ_n/∂θ [m/rad]
-  double sigma = 0.0;                         ///< σ = (P3 − p0)·σ̂ [m]
-  Vector3 point = Vector3::Zero();            ///< P3, contact point (transverse point at z_s) [m]
-  double approach_rate = 0.0;                 ///< δ̇_n [m/s] (when rates are given)
-  double sliding_rate = 0.0;                  ///< transverse sliding speed (v1 − v2)·J n [m/s]
+  /// ∂δ_n/∂(ψ, τ_r, τ_t) of the pinion tooth [m/rad, -, -]
+  Eigen::Matrix<double, 1, 3> d_pinion_tooth = Eigen::Matrix<double, 1, 3>::Zero();
+  /// ∂δ_n/∂(ψ, τ_r, τ_t) of the gear tooth [m/rad, -, -]
+  Eigen::Matrix<double, 1, 3> d_gear_tooth = Eigen::Matrix<double, 1, 3>::Zero();
+  double sigma = 0.0;               ///< σ = (P3 − p0)·σ̂ [m]
+  Vector3 point = Vector3::Zero();  ///< P3, contact point (transverse point at z_s) [m]
+  double approach_rate = 0.0;       ///< δ̇_n [m/s] (when rates are given)
+  double sliding_rate = 0.0;        ///< transverse sliding speed (v1 − v2)·J n [m/s]
 };
 
 /// @brief Slice poses and tooth-pair contacts of one external pair (see the @file).
 class ContactMeshKinematics {
  public:
+  /// Columns of the internal state gradient: q_pair (12), θ, pinion tooth (3), gear tooth (3).
+  static constexpr int kStateSize = 19;
   /// @param[in] pair derived pair geometry (external).
   /// @param[in] frame mesh frame of the pair (CalcMeshFrame), its centres and drive sign.
   /// @param[in] pinion, gear flank geometries (MakeToothFlankGeometry).
@@ -97,11 +112,16 @@ class ContactMeshKinematics {
   /// @brief Contact of pinion tooth i1 with gear tooth i2 on one side in one slice, with the
   /// derivatives of the @file. Where the flank–flank point lies beyond a flank's end (ρ > ρ_t),
   /// the tip corner of that tooth against the mate's flank is returned instead
-  /// (tip_corner_contact.hpp; transverse.corner = 1 pinion tip, 2 gear tip). Rates are optional
-  /// (zero when not given).
+  /// (tip_corner_contact.hpp; transverse.corner = 1 pinion tip, 2 gear tip). Deflected teeth
+  /// (`teeth`, type A/B) are placed on their effective base circles about the pivots at
+  /// ToothFlankGeometry::pivot_radius. Rates are optional (zero when not given).
+  /// @param[in] q_pair (12) [m, rad]; theta [rad]; slice s; tooth1, tooth2 tooth indices; side.
+  /// @param[in] q_rate optional (12) q̇_pair [m/s, rad/s]; theta_rate θ̇ [rad/s].
+  /// @param[in] teeth optional deflections of the two teeth and their rates (rigid if null).
   SliceToothContact EvalToothPair(const Vector12& q_pair, double theta, int slice, int tooth1,
                                   int tooth2, FlankSide side, const Vector12* q_rate = nullptr,
-                                  double theta_rate = 0.0) const;
+                                  double theta_rate = 0.0,
+                                  const ToothPairState* teeth = nullptr) const;
 
  private:
   MeshFrame frame_;

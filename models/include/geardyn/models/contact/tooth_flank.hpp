@@ -43,6 +43,7 @@ struct ToothFlankGeometry {
   double form_radius = 0.0;        ///< r_F, start of the usable involute [m], r_b ≤ r_F < r_a
   double base_half_angle = 0.0;    ///< ψ_b = s_t/(2r) + inv α_t [rad]
   double tip_corner_radius = 0.0;  ///< ρ_a ≥ 0, radius of the rounded tip corner [m]
+  double pivot_radius = 0.0;       ///< r_p, radius of the tooth's root pivot (tooth_pose.hpp) [m]
   double helix_factor = 0.0;       ///< h tan β_b / r_b [rad/m]: section twist per metre along +Z
                                    ///< (h = +1 right hand, −1 left hand, 0 spur)
   /// ρ_F = √(r_F² − r_b²), roll distance of the form circle [m].
@@ -64,6 +65,7 @@ struct ToothFlankGeometry {
 /// @param[in] form_radius r_F [m]; ≤ 0 selects max(r_b, r_f), the lowest point an involute can
 ///   have without a fillet model (the real form circle lies slightly above r_f).
 /// @param[in] tip_corner_radius ρ_a ≥ 0 [m].
+/// @return the geometry, with pivot_radius = r_f (Kim's root joint; change it for other models).
 /// @throws InvalidInput naming "member.kind" (internal gears are not supported by the contact
 ///   geometry), "form_radius" (not below the tip radius) or "tip_corner_radius" (negative, not
 ///   finite, or not below half the transverse tip thickness).
