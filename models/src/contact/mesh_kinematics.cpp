@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <type_traits>
 
 #include "geardyn/common/check.hpp"
 #include "geardyn/models/contact/tip_corner_contact.hpp"
@@ -119,7 +120,6 @@ SliceToothContact ContactMeshKinematics::EvalToothPair(const Vector12& q, double
   // State columns: [q_pair (12), θ, pinion tooth (ψ, τ_r, τ_t), gear tooth (ψ, τ_r, τ_t)].
   using Row = Eigen::Matrix<double, 1, kStateSize>;
   using Slice = Eigen::Matrix<double, 3, kStateSize>;  // ∂(c_k, φ_k)/∂state of a slice pose
-  using Pose = Eigen::Matrix<double, 6, kStateSize>;   // ∂(c′1, β1, c′2, β2)/∂state
   auto [p1, p2] = SlicePoses(q, theta, slice);
   const int eps = Unwind(side);
   const double y = slice_position(slice);
@@ -130,6 +130,7 @@ SliceToothContact ContactMeshKinematics::EvalToothPair(const Vector12& q, double
   const ToothDeflection none;
   const ToothDeflection& d1 = teeth != nullptr ? teeth->pinion : none;
   const ToothDeflection& d2 = teeth != nullptr ? teeth->gear : none;
+  // Rigid teeth (teeth == nullptr) have no tooth columns; with teeth they are filled below.
   Slice s1 = Slice::Zero(), s2 = Slice::Zero();
   s1.block<3, 6>(0, 0) = SliceJacobian(zs - frame_.pinion_center.z());
   s2.block<3, 6>(0, 6) = SliceJacobian(zs - frame_.gear_center.z());
@@ -139,21 +140,37 @@ SliceToothContact ContactMeshKinematics::EvalToothPair(const Vector12& q, double
   s2(2, 12) = dbeta2;
   double angle1 = p1.angle, angle2 = p2.angle;
   InvoluteFlankPose f1, f2;
-  Pose d_pose;
+  Eigen::Matrix<double, 3, 6> j1, j2;  // ∂(c′, β)/∂(c, φ, ψ, τ_r, τ_t) of each tooth
+  // M ∂(c′1, β1, c′2, β2)/∂state for an R×6 M, without forming the 6×19 matrix: the slice
+  // columns through ∂(c′, β)/∂(c, φ) · s_k, the tooth columns directly.
+  auto chain = [&](const auto& m) {
+    using M = std::decay_t<decltype(m)>;
+    constexpr int kRows = M::RowsAtCompileTime;
+    const Eigen::Matrix<double, kRows, 3> a1 = m.template leftCols<3>() * j1.leftCols<3>();
+    const Eigen::Matrix<double, kRows, 3> a2 = m.template rightCols<3>() * j2.leftCols<3>();
+    Eigen::Matrix<double, kRows, kStateSize> r = a1 * s1 + a2 * s2;
+    r.template middleCols<3>(13) += m.template leftCols<3>() * j1.rightCols<3>();
+    r.template middleCols<3>(16) += m.template rightCols<3>() * j2.rightCols<3>();
+    return r;
+  };
   // Flank poses of the (deflected) teeth at the gear angles and their gradient.
   auto place = [&] {
+    if (teeth == nullptr) {  // rigid teeth: c′ = c, β = φ + γ (no trigonometry)
+      f1 = MakeFlankPose(pinion_, p1.center, angle1 + rel1, eps);
+      f2 = MakeFlankPose(gear_, p2.center, angle2 + rel2, eps);
+      j1.setZero();
+      j1.leftCols<3>().setIdentity();
+      j2 = j1;
+      return;
+    }
     const EffectiveBaseCircle e1 =
         CalcEffectiveBaseCircle(p1.center, angle1, rel1, pinion_.pivot_radius, d1);
     const EffectiveBaseCircle e2 =
         CalcEffectiveBaseCircle(p2.center, angle2, rel2, gear_.pivot_radius, d2);
     f1 = MakeFlankPose(pinion_, e1.center, e1.angle + rel1, eps);
     f2 = MakeFlankPose(gear_, e2.center, e2.angle + rel2, eps);
-    d_pose.topRows<3>() = e1.jacobian.leftCols<3>() * s1;
-    d_pose.bottomRows<3>() = e2.jacobian.leftCols<3>() * s2;
-    // Direct tooth columns, added to what the gear angles carry (the helical Δ_k depends on the
-    // teeth through P).
-    d_pose.block<3, 3>(0, 13) += e1.jacobian.rightCols<3>();
-    d_pose.block<3, 3>(3, 16) += e2.jacobian.rightCols<3>();
+    j1 = e1.jacobian;
+    j2 = e2.jacobian;
   };
   // Flank–flank contact, or a tip corner where the involute point lies beyond a flank's end.
   auto contact = [&] {
@@ -174,7 +191,7 @@ SliceToothContact ContactMeshKinematics::EvalToothPair(const Vector12& q, double
     // section by Δ_k = −f_k w_k(P) (helical only); its gradient includes P's own dependence on
     // the state. The deflected tooth turns with its gear (Δ enters through ∂c′/∂φ).
     const Vector2 point = out.transverse.point;
-    const Eigen::Matrix<double, 2, kStateSize> d_point = out.transverse.d_point * d_pose;
+    const Eigen::Matrix<double, 2, kStateSize> d_point = chain(out.transverse.d_point);
     Row dd1 = AxialGradientP(p1) * (d_point - s1.topRows<2>());
     Row dd2 = AxialGradientP(p2) * (d_point - s2.topRows<2>());
     dd1.segment<6>(0) += AxialGradientQ(p1, point);
@@ -198,7 +215,7 @@ SliceToothContact ContactMeshKinematics::EvalToothPair(const Vector12& q, double
     grad -= e1.slope * t.d_roll1 + e2.slope * t.d_roll2;
   }
   out.penetration = cos_base_helix_ * t.penetration - out.separation;
-  const Row full = grad * d_pose;
+  const Row full = chain(grad);
   out.d_penetration = full.head<12>().transpose();
   out.d_penetration_d_phase = full(12);
   out.d_pinion_tooth = full.segment<3>(13);
@@ -216,7 +233,10 @@ SliceToothContact ContactMeshKinematics::EvalToothPair(const Vector12& q, double
           teeth->gear_rate.tangential;
     }
     out.approach_rate = full.dot(rate.transpose());
-    const Eigen::Matrix<double, 6, 1> pose_rate = d_pose * rate;
+    // Pose rates: ∂(c′, β)/∂(c, φ) (s_k · rate) + ∂(c′, β)/∂tooth · tooth rate.
+    Eigen::Matrix<double, 6, 1> pose_rate;
+    pose_rate.head<3>() = j1.leftCols<3>() * (s1 * rate) + j1.rightCols<3>() * rate.segment<3>(13);
+    pose_rate.tail<3>() = j2.leftCols<3>() * (s2 * rate) + j2.rightCols<3>() * rate.segment<3>(16);
     out.sliding_rate =
         CalcContactRates(t, f1.center, pose_rate.head<3>(), f2.center, pose_rate.tail<3>()).sliding;
   } else {

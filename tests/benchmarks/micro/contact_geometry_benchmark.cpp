@@ -4,7 +4,8 @@
 //  * BiarcContact/N — the same contact with Kim's biarc flanks (N biarcs per flank, all arcs);
 //  * Presearch — the candidate tooth pairs of the rig (50/50 teeth) at one phase;
 //  * EvalToothPair — one pair in one slice through the mesh kinematics (poses, kernel, chain rule
-//    to the 12 body coordinates and θ), spur (rig) and helical (21/37, β 20°);
+//    to the 12 body coordinates, θ and the tooth DOFs), spur (rig) and helical (21/37, β 20°)
+//    rigid, and spur with deflected teeth;
 //  * RigSlice — pre-search plus both flanks of every candidate pair: one slice of the rig.
 // Kahraman–Blankenship rig as in Kim et al. (2015): m 3 mm, z 50/50, α 20°, r_a 78 mm.
 //
@@ -80,23 +81,28 @@ void BM_Presearch(benchmark::State& state) {
   const ContactMeshKinematics kin(s.pair, s.frame, s.pinion, s.gear, 1);
   const auto [p1, p2] = kin.SlicePoses(Vector12::Zero(), 1.3, 0);
   std::array<ToothPairCandidate, 64> buf;
-  for (auto _ : state) benchmark::DoNotOptimize(FindCandidatePairs(s.pinion, p1.layout, s.gear,
-                                                                   p2.layout, 0.01, buf));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(FindCandidatePairs(s.pinion, p1.layout, s.gear, p2.layout, 0.01, buf));
 }
 BENCHMARK(BM_Presearch);
 
+// Arg: 0 spur rigid teeth, 1 helical rigid teeth, 2 spur deflected teeth (type A/B state).
 void BM_EvalToothPair(benchmark::State& state) {
-  const bool helical = state.range(0) != 0;
+  const bool helical = state.range(0) == 1;
+  ToothPairState teeth;
+  teeth.pinion = {1e-5, 1e-7, -1e-7};
+  const ToothPairState* deflected = state.range(0) == 2 ? &teeth : nullptr;
   const auto s = test::MakeContactPair(helical ? test::HelicalPair() : test::KimRigPair());
   const ContactMeshKinematics kin(s.pair, s.frame, s.pinion, s.gear, 1);
   Vector12 q = Vector12::Constant(1e-6);
   double theta = 0.3;
   for (auto _ : state) {
     theta += 1e-9;
-    benchmark::DoNotOptimize(kin.EvalToothPair(q, theta, 0, 0, 0, FlankSide::kDrive));
+    benchmark::DoNotOptimize(
+        kin.EvalToothPair(q, theta, 0, 0, 0, FlankSide::kDrive, nullptr, 0.0, deflected));
   }
 }
-BENCHMARK(BM_EvalToothPair)->Arg(0)->Arg(1);
+BENCHMARK(BM_EvalToothPair)->Arg(0)->Arg(1)->Arg(2);
 
 void BM_RigSlice(benchmark::State& state) {
   const auto s = test::MakeContactPair(test::KimRigPair(150.2));

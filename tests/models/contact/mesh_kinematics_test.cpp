@@ -16,6 +16,7 @@
 #include "geardyn/models/mesh/tooth_modifications.hpp"
 #include "support/contact_pairs.hpp"
 #include "support/expect_throws.hpp"
+#include "support/no_malloc.hpp"
 
 namespace geardyn {
 namespace {
@@ -394,6 +395,38 @@ TEST(ContactMeshKinematicsTest, DeflectedTeeth) {
     }
     EXPECT_GT(checked, 1);
   }
+}
+
+// The per-θ path (slice poses, pre-search, pair evaluation with relief, helical, deflected teeth
+// and rates) never allocates.
+TEST(ContactMeshKinematicsTest, EvaluationDoesNotAllocate) {
+  const ContactPairSetup s = MakeContactPair(test::HelicalPair());
+  ToothModifications m;
+  m.pinion_tip_relief = {10e-6, 2.0e-3, ReliefShape::kParabolic};
+  m.lead_crowning = 4e-6;
+  const ContactMeshKinematics kin(s.pair, s.frame, s.pinion, s.gear, 3,
+                                  FlankModifications(s.pair, m));
+  const Vector12 q = Vector12::Constant(1e-6), q_rate = Vector12::Constant(1e-3);
+  ToothPairState teeth;
+  teeth.pinion.rotation = 1e-4;
+  std::array<ToothPairCandidate, 32> buf;
+  double sum = 0.0;
+  const long n = test::CountAllocations([&] {
+    for (int k = 0; k < 20; ++k) {
+      const double theta = 0.1 * k;
+      for (int slice = 0; slice < 3; ++slice) {
+        const auto [p1, p2] = kin.SlicePoses(q, theta, slice);
+        const int count = FindCandidatePairs(s.pinion, p1.layout, s.gear, p2.layout, 0.01, buf);
+        for (int c = 0; c < std::min(count, 32); ++c) {
+          sum += kin.EvalToothPair(q, theta, slice, buf[c].tooth1, buf[c].tooth2, FlankSide::kDrive,
+                                   &q_rate, 10.0, &teeth)
+                     .penetration;
+        }
+      }
+    }
+  });
+  EXPECT_EQ(n, 0);
+  EXPECT_TRUE(std::isfinite(sum));
 }
 
 TEST(ContactMeshKinematicsTest, RejectsBadInput) {
