@@ -429,6 +429,33 @@ TEST(ContactMeshKinematicsTest, EvaluationDoesNotAllocate) {
   EXPECT_TRUE(std::isfinite(sum));
 }
 
+// The coast flanks are the drive flanks of the reversed drive: the gradient of every coast
+// contact (across the backlash) equals [1, −σ] G of the mesh frame with drive sign −s.
+TEST(ContactMeshKinematicsTest, CoastGradientIsTheReversedDriveInterface) {
+  for (const GearPairSpec& spec : {test::UnequalSpurPair(), test::HelicalPair()}) {
+    for (int drive_sign : {1, -1}) {
+      const ContactPairSetup s = MakeContactPair(spec, drive_sign);
+      const ContactPairSetup r = MakeContactPair(spec, -drive_sign);
+      const ContactMeshKinematics kin(s.pair, s.frame, s.pinion, s.gear, 3);
+      const Matrix2x12 G = CalcMeshJacobian(r.frame);
+      int checked = 0;
+      for (double theta : {0.4, 2.9, 5.1}) {
+        for (int slice = 0; slice < 3; ++slice) {
+          for (const auto& c :
+               ValidContacts(kin, Vector12::Zero(), theta, slice, FlankSide::kCoast)) {
+            const double sigma = (c.c.point - r.frame.reference_point).dot(r.frame.sigma);
+            const Vector12 bs = (G.row(0) - sigma * G.row(1)).transpose();
+            EXPECT_LT((c.c.d_penetration - bs).norm(), 1e-12 * bs.norm())
+                << "ours " << c.c.d_penetration.transpose() << "\nbs   " << bs.transpose();
+            ++checked;
+          }
+        }
+      }
+      EXPECT_GT(checked, 5);
+    }
+  }
+}
+
 TEST(ContactMeshKinematicsTest, RejectsBadInput) {
   const ContactPairSetup s = MakeContactPair(test::UnequalSpurPair());
   EXPECT_THROWS_MESSAGE(ContactMeshKinematics(s.pair, s.frame, s.pinion, s.gear, 0), InvalidInput,

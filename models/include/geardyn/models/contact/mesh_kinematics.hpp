@@ -23,7 +23,9 @@
 ///
 /// **The B–S link.** For every contact, ∂δ_n/∂q_pair = [1, −σ] G with G = CalcMeshJacobian(frame)
 /// and σ = (P3 − p0)·σ̂ (P3 = (P, z_s)) at q = 0, for spur and helical pairs (tested): the
-/// contact model refines the same interface, contact by contact.
+/// contact model refines the same interface, contact by contact. The coast flanks are the drive
+/// flanks of the reversed drive: their gradient is [1, −σ] G of the frame with drive sign −s
+/// (also tested).
 #pragma once
 
 #include <Eigen/Core>
