@@ -114,38 +114,50 @@ TEST(TipCornerContactTest, DerivativesMatchFiniteDifferences) {
 
 // Through the mesh kinematics: a pinion tooth turned on beyond the end of its path (the pair of
 // cycle 0 after the end of contact, pinion advanced) gets a corner contact, and the swapped form
-// for a gear tip at the start of the path; the gradients still match central differences.
+// for a gear tip at the start of the path; the gradients still match central differences (spur,
+// and helical with tilts so that the axial term and its contact-point dependence act).
 TEST(TipCornerContactTest, MeshKinematicsFallsBackToTheCorner) {
-  const auto s = test::MakeContactPair(test::KimRigPair(150.0));
-  ToothFlankGeometry pinion = s.pinion, gear = s.gear;
-  pinion.tip_corner_radius = 0.2e-3;
-  gear.tip_corner_radius = 0.2e-3;
-  const ContactMeshKinematics kin(s.pair, s.frame, pinion, gear, 1);
-  const double pbt = s.pair.transverse_base_pitch;
-  const double x_end = s.pair.path_end_from_pinion_tangent - s.pair.pitch_point_from_pinion_tangent;
-  const double x_start =
-      s.pair.path_start_from_pinion_tangent - s.pair.pitch_point_from_pinion_tangent;
-  // Pinion tip: cycle 0 at x slightly beyond the pinion's flank end; the pinion leads by 30 µm.
-  for (int which : {1, 2}) {
-    const double x = which == 1 ? x_end + 0.1e-3 : x_start - 0.1e-3;
-    const double theta = 2 * kPi * x / pbt;
-    Vector12 q = Vector12::Zero();
-    q(5) = 30e-6 / s.pair.pinion.base_radius;
-    const SliceToothContact c = kin.EvalToothPair(q, theta, 0, 0, 0, FlankSide::kDrive);
-    ASSERT_TRUE(c.transverse.found);
-    EXPECT_EQ(c.transverse.corner, which);
-    EXPECT_TRUE(c.transverse.valid);
-    EXPECT_GT(c.penetration, 0.0);
-    EXPECT_LT(c.penetration, 30e-6);
-    for (int i : {0, 1, 5, 6, 7, 11}) {
-      const double h = 1e-8;
-      Vector12 qp = q, qm = q;
-      qp(i) += h;
-      qm(i) -= h;
-      const double fd = (kin.EvalToothPair(qp, theta, 0, 0, 0, FlankSide::kDrive).penetration -
-                         kin.EvalToothPair(qm, theta, 0, 0, 0, FlankSide::kDrive).penetration) /
-                        (2 * h);
-      EXPECT_NEAR(fd, c.d_penetration(i), 1e-6 * (1.0 + std::abs(c.d_penetration(i)))) << i;
+  for (const GearPairSpec& spec : {test::KimRigPair(150.0), test::HelicalPair()}) {
+    const auto s = test::MakeContactPair(spec);
+    ToothFlankGeometry pinion = s.pinion, gear = s.gear;
+    pinion.tip_corner_radius = 0.2e-3;
+    gear.tip_corner_radius = 0.2e-3;
+    const ContactMeshKinematics kin(s.pair, s.frame, pinion, gear, 1);  // mid face: y = 0
+    const double pbt = s.pair.transverse_base_pitch;
+    const double t1c = s.pair.pitch_point_from_pinion_tangent;
+    const double x_end = s.pair.path_end_from_pinion_tangent - t1c;
+    const double x_start = s.pair.path_start_from_pinion_tangent - t1c;
+    for (int which : {1, 2}) {
+      const double x = which == 1 ? x_end + 0.1e-3 : x_start - 0.1e-3;
+      const double theta = 2 * kPi * x / pbt;
+      Vector12 q = Vector12::Zero();
+      q(5) = 30e-6 / s.pair.pinion.base_radius;  // the pinion leads by 30 µm
+      q(3) = 1e-5;
+      q(4) = -2e-5;
+      q(9) = -1e-5;
+      q(2) = 2e-7;
+      const SliceToothContact c = kin.EvalToothPair(q, theta, 0, 0, 0, FlankSide::kDrive);
+      ASSERT_TRUE(c.transverse.found);
+      EXPECT_EQ(c.transverse.corner, which);
+      EXPECT_TRUE(c.transverse.valid);
+      EXPECT_GT(c.penetration, 0.0);
+      EXPECT_LT(c.penetration, 30e-6);
+      for (int i = 0; i < 12; ++i) {
+        const double h = 1e-8;
+        Vector12 qp = q, qm = q;
+        qp(i) += h;
+        qm(i) -= h;
+        const double fd = (kin.EvalToothPair(qp, theta, 0, 0, 0, FlankSide::kDrive).penetration -
+                           kin.EvalToothPair(qm, theta, 0, 0, 0, FlankSide::kDrive).penetration) /
+                          (2 * h);
+        EXPECT_NEAR(fd, c.d_penetration(i), 1e-6 * (1.0 + std::abs(c.d_penetration(i)))) << i;
+      }
+      const double ht = 1e-7;
+      const double fdt =
+          (kin.EvalToothPair(q, theta + ht, 0, 0, 0, FlankSide::kDrive).penetration -
+           kin.EvalToothPair(q, theta - ht, 0, 0, 0, FlankSide::kDrive).penetration) /
+          (2 * ht);
+      EXPECT_NEAR(fdt, c.d_penetration_d_phase, 1e-9);
     }
   }
 }
