@@ -55,6 +55,7 @@ MeshCoreLevel CoreLevel(MeshModelLevel level) {
     case MeshModelLevel::kBlankenshipSingh:
     case MeshModelLevel::kMeanLti:
     case MeshModelLevel::kNonlinearSlices:
+    case MeshModelLevel::kContact:
       break;
   }
   return MeshCoreLevel::kBlankenshipSingh;
@@ -255,6 +256,13 @@ BuiltMeshCore BuildMeshCore(const Scene& scene, const MeshDef& mesh, bool transm
   for (const std::string& w : mesh.geometry.warnings)
     warnings.push_back("mesh." + mesh.name + ": " + w);
   const int drive_sign = MeshDriveSign(scene, mesh, &warnings);
+  // The tooth-contact core (spec 03) is not built yet: say so, and how to run the mesh now.
+  GEARDYN_THROW_UNLESS(model.level != MeshModelLevel::kContact,
+                       "mesh." << mesh.name
+                               << ".model: \"contact\" (tooth contact with tooth bodies) has no "
+                                  "mesh core in this build yet; run the mesh with --set mesh."
+                               << mesh.name << ".model=slices (contact loss, backlash) or ="
+                               << "blankenship_singh (the linear LTV model)");
   if (model.parameters) {
     return {MakeUserCore(mesh), std::nullopt, drive_sign, std::move(warnings)};
   }

@@ -93,6 +93,15 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
   std::string why;
   GEARDYN_THROW_UNLESS(options.IsValid(&why), why);
   GEARDYN_THROW_UNLESS(!scene.gears.empty(), "scene: no gears");
+  for (const MeshDef& m : scene.meshes) {
+    GEARDYN_THROW_UNLESS(
+        options.allow_contact_meshes || m.model.level != MeshModelLevel::kContact,
+        "mesh." << m.name << ".model: \"contact\" is the time-domain tooth-contact model "
+                << "(geardyn simulate); " << options.analysis
+                << " needs a linear or slice mesh core: run it with --set mesh." << m.name
+                << ".model=slices (contact loss, backlash) or =blankenship_singh (the linear LTV "
+                   "model)");
+  }
   const int num_gears = static_cast<int>(scene.gears.size());
   const int num_meshes = static_cast<int>(scene.meshes.size());
   for (const auto& [name, angle] : options.mesh_angles) {

@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "geardyn/models/contact/contact_mesh_def.hpp"
 #include "geardyn/models/mesh/contact_lines.hpp"
 #include "geardyn/models/mesh/mesh_cores.hpp"
 #include "geardyn/models/mesh/tooth_modifications.hpp"
@@ -80,6 +81,10 @@ struct MeshModelDef {
   /// User K, h, μ (and ε): replaces the contact-line model when set; not with kNonlinearSlices
   /// (the slices need the contact lines), nor with modifications/errors/stiffness_per_length.
   std::optional<UserMeshParameters> parameters;
+  /// The [mesh.contact] table (tooth contact, spec 03), if given. It is read and checked with any
+  /// level (so that `--set mesh.NAME.model=...` switches levels without editing the file) and used
+  /// by kContact only, which takes the defaults of ContactMeshDef without it.
+  std::optional<ContactMeshDef> contact;
 };
 
 /// @brief The core of one scene mesh with what it was built from.
