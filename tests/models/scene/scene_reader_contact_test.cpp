@@ -10,6 +10,7 @@
 
 #include "geardyn/common/errors.hpp"
 #include "geardyn/models/scene/mesh_model.hpp"
+#include "geardyn/models/scene/scene_reader.hpp"
 #include "geardyn/models/system/scene_system.hpp"
 #include "scene_reader_cases.hpp"
 #include "support/expect_throws.hpp"
@@ -233,6 +234,31 @@ TEST(SceneReaderContactTest, LinearAnalysesRefuseTheContactModel) {
   const Scene slices =
       ParseScene(Mesh("model = \"contact\"\n"), test::kSource, {"mesh.pinion-wheel.model=slices"});
   EXPECT_NO_THROW(MakeSystemModel(slices, options));
+}
+
+// Time-domain analyses get the tooth-contact core, placed in the mesh's frame (the built-in rig:
+// 12 + 100 coordinates with revolute teeth); a gear too light for its teeth is refused.
+TEST(SceneReaderContactTest, TimeDomainAnalysesGetTheContactCore) {
+  const Scene s =
+      LoadScene("builtin:kahraman-blankenship-rig",
+                {"mesh.pinion-wheel.model=contact", "mesh.pinion-wheel.contact.teeth=\"revolute\"",
+                 "mesh.pinion-wheel.contact.bending_stiffness=11.5e3"});
+  SceneSystemOptions options;
+  options.allow_contact_meshes = true;
+  const SystemModel model = MakeSystemModel(s, options);
+  const auto* core =
+      std::get_if<std::shared_ptr<const NonlinearMeshCore>>(&model.meshes().at(0).core);
+  ASSERT_NE(core, nullptr);
+  EXPECT_EQ((*core)->num_coordinates(), 112);
+  EXPECT_EQ((*core)->num_internal_coordinates(), 100);
+  const Scene light =
+      LoadScene("builtin:kahraman-blankenship-rig",
+                {"mesh.pinion-wheel.model=contact", "mesh.pinion-wheel.contact.teeth=\"revolute\"",
+                 "mesh.pinion-wheel.contact.bending_stiffness=11.5e3", "gear.wheel.inertia=1e-3"});
+  EXPECT_THROWS_MESSAGE(
+      MakeSystemModel(light, options), InvalidInput,
+      R"(^mesh\.pinion-wheel\.contact: gear\.wheel\.inertia: 0\.001 kg m\^2 must )"
+      R"(exceed the 50 teeth's own)");
 }
 
 }  // namespace
