@@ -209,6 +209,38 @@ TEST(ContactMeshCoreTest, RigidLinearStiffnessEqualsTheContactLineModel) {
   }
 }
 
+// Static load sharing of rigid unmodified involutes (law of gearing: a rigid rotation of the
+// pinion by δ/r_b1 gives every pair on the line of action the same penetration δ): in the
+// two-pair zone two pinion teeth carry k δ each, in the one-pair zone one tooth carries it, and
+// the moment on the pinion is −Σ f r_b1.
+TEST(ContactMeshCoreTest, RigidTeethShareTheStaticLoadEqually) {
+  const auto setup = MakeContactPair(KimRigPair());
+  const double k = 4e8, delta = 1e-6;
+  ContactMeshDef def;
+  def.law = LinearContactLaw(k, 0.0);
+  const ContactMeshCore core(setup.pair, setup.frame, def);
+  auto ws = core.MakeWorkspace();
+  const double rb1 = core.kinematics().pinion().base_radius;
+  for (const auto& [theta, pairs] : {std::pair{0.0, 1}, std::pair{2.0, 2}, std::pair{-2.2, 2}}) {
+    State s;
+    s.x = VectorX::Zero(core.num_coordinates());
+    s.v = VectorX::Zero(core.num_coordinates());
+    s.x(5) = delta / rb1;
+    s.theta = theta;
+    const NonlinearMeshCoreOutput out = Eval(core, *ws, s, false);
+    int loaded = 0;
+    for (int t = 0; t < 50; ++t) {
+      const double f = out.channels(t);  // pinion tooth t [N]
+      if (f == 0.0) continue;
+      ++loaded;
+      EXPECT_NEAR(f, k * delta, 1e-9 * k * delta) << "theta " << theta << " tooth " << t;
+      EXPECT_EQ(out.channels(100 + t), 1.0);  // status: drive flank
+    }
+    EXPECT_EQ(loaded, pairs) << "theta " << theta;
+    EXPECT_NEAR(out.force(5), -pairs * k * delta * rb1, 1e-9 * k * delta * rb1);
+  }
+}
+
 TEST(ContactMeshCoreTest, UnsupportedOptionsAreRefused) {
   const auto helical = MakeContactPair(test::HelicalPair());
   EXPECT_THROWS_MESSAGE(ContactMeshCore(helical.pair, helical.frame, RevoluteDef()), InvalidInput,
