@@ -235,6 +235,8 @@ TEST(ContactMeshCoreTest, RigidTeethShareTheStaticLoadEqually) {
       ++loaded;
       EXPECT_NEAR(f, k * delta, 1e-9 * k * delta) << "theta " << theta << " tooth " << t;
       EXPECT_EQ(out.channels(100 + t), 1.0);  // status: drive flank
+      // Switching function of (slice 0, drive, tooth t): the signed gap −δ.
+      EXPECT_NEAR(out.switching(t), -delta, 1e-12) << "theta " << theta << " tooth " << t;
     }
     EXPECT_EQ(loaded, pairs) << "theta " << theta;
     EXPECT_NEAR(out.force(5), -pairs * k * delta * rb1, 1e-9 * k * delta * rb1);
