@@ -158,8 +158,9 @@ std::vector<std::string> ContactMeshCore::channel_names() const {
 
 bool ContactMeshCore::EvalContact(const Eigen::Ref<const VectorX>& x,
                                   const Eigen::Ref<const VectorX>& v, double theta,
-                                  double theta_rate, int slice, int i1, int i2, FlankSide side,
-                                  Contact* c) const {
+                                  double theta_rate, int slice,
+                                  const std::pair<GearSlicePose, GearSlicePose>& slice_poses,
+                                  int i1, int i2, FlankSide side, Contact* c) const {
   const Vector12 q = x.head<12>();
   c->n = 0;
   c->has_sliding = false;
@@ -178,8 +179,7 @@ bool ContactMeshCore::EvalContact(const Eigen::Ref<const VectorX>& x,
     c->line.radius2 = std::max(sc.transverse.roll2, kMinCurvatureRadius);
     return true;
   }
-  const auto [p1, p2] = kinematics_.SlicePoses(q, theta, slice);
-  const GearSlicePose* poses[2] = {&p1, &p2};
+  const GearSlicePose* poses[2] = {&slice_poses.first, &slice_poses.second};
   const ToothFlankGeometry* geom[2] = {&kinematics_.pinion(), &kinematics_.gear()};
   const int tooth[2] = {i1, i2};
   const int eps = kinematics_.Unwind(side);
@@ -236,14 +236,16 @@ bool ContactMeshCore::EvalContact(const Eigen::Ref<const VectorX>& x,
     grad -= e1.slope * t.d_roll1 + e2.slope * t.d_roll2;
   }
   c->delta = t.penetration - e;
+  if (c->delta <= 0.0) return true;  // open: the gap is all the caller needs
   // Sliding speed: linear in the two pose rates, so its gradient is exact from unit rates.
-  PoseGradient slide;
-  for (int i = 0; i < 6; ++i) {
+  PoseGradient slide = PoseGradient::Zero();
+  const bool friction = def_.friction_coefficient > 0.0;
+  for (int i = 0; i < 6 && friction; ++i) {
     Vector3 r1 = Vector3::Zero(), r2 = Vector3::Zero();
     (i < 3 ? r1 : r2)(i % 3) = 1.0;
     slide(i) = CalcContactRates(t, eff[0].center, r1, eff[1].center, r2).sliding;
   }
-  c->has_sliding = true;
+  c->has_sliding = friction;
   // Chain: pose (c′, β) ← (c, φ, ψ, τ_r, τ_t) ← (q_k, θ, tooth coordinates).
   c->grad_theta = 0.0;
   c->slide_theta = 0.0;
@@ -344,15 +346,16 @@ void ContactMeshCore::DoCalcForces(NonlinearMeshCoreWorkspace& ws_base, double t
   const Vector12 q = x.head<12>();
   Contact c;
   for (int slice = 0; slice < kinematics_.num_slices(); ++slice) {
-    const auto [p1, p2] = kinematics_.SlicePoses(q, theta, slice);
-    const int found =
-        FindCandidatePairs(kinematics_.pinion(), p1.layout, kinematics_.gear(), p2.layout, margin,
-                           std::span<ToothPairCandidate>(ws.candidates));
+    const std::pair<GearSlicePose, GearSlicePose> poses = kinematics_.SlicePoses(q, theta, slice);
+    const int found = FindCandidatePairs(kinematics_.pinion(), poses.first.layout,
+                                         kinematics_.gear(), poses.second.layout, margin,
+                                         std::span<ToothPairCandidate>(ws.candidates));
     const int count = std::min<int>(found, static_cast<int>(ws.candidates.size()));
     for (int n = 0; n < count; ++n) {
       const ToothPairCandidate& pair = ws.candidates[n];
       for (const FlankSide side : {FlankSide::kDrive, FlankSide::kCoast}) {
-        if (!EvalContact(x, v, theta, theta_rate, slice, pair.tooth1, pair.tooth2, side, &c)) {
+        if (!EvalContact(x, v, theta, theta_rate, slice, poses, pair.tooth1, pair.tooth2, side,
+                         &c)) {
           continue;
         }
         const int sw = (slice * 2 + (side == FlankSide::kCoast ? 1 : 0)) * z1 + pair.tooth1;

@@ -89,11 +89,13 @@ class ContactMeshCore final : public NonlinearMeshCore {
 
  private:
   struct Contact;
-  // The contact of pinion tooth i1 and gear tooth i2 on one side in one slice, with its
-  // gradients on the local coordinates (see the .cpp).
+  // The contact of pinion tooth i1 and gear tooth i2 on one side in one slice (poses of that
+  // slice given): false when there is none; its gap δ; when δ > 0 its gradients on the local
+  // coordinates (see the .cpp).
   bool EvalContact(const Eigen::Ref<const VectorX>& x, const Eigen::Ref<const VectorX>& v,
-                   double theta, double theta_rate, int slice, int i1, int i2, FlankSide side,
-                   Contact* c) const;
+                   double theta, double theta_rate, int slice,
+                   const std::pair<GearSlicePose, GearSlicePose>& slice_poses, int i1, int i2,
+                   FlankSide side, Contact* c) const;
   int ToothOffset(int member, int tooth) const;
 
   GearPairGeometry pair_;
