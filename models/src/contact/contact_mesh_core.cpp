@@ -42,6 +42,14 @@ Eigen::Matrix<double, 3, 6> SliceJacobian(double dz) {
   return j;
 }
 
+// The mesh cycle n ≡ tooth (mod z) nearest to `cycle` (mesh_kinematics.hpp numbering).
+std::int64_t MeshCycle(int tooth, int z, std::int64_t cycle) {
+  std::int64_t d = (tooth - cycle) % z;  // in (−z, z)
+  if (d < 0) d += z;                     // [0, z)
+  if (2 * d >= z) d -= z;                // [−z/2, z/2)
+  return cycle + d;
+}
+
 }  // namespace
 
 /// One contact with its gradients on the local coordinates (indices into x).
@@ -342,8 +350,9 @@ void ContactMeshCore::DoCalcForces(NonlinearMeshCoreWorkspace& ws_base, double t
     }
   }
 
-  // ---- contacts: pre-search per slice, then both flanks of every candidate pair
+  // ---- contacts: pre-search per slice, then the flanks of the candidate pairs that can mesh
   const Vector12 q = x.head<12>();
+  const std::int64_t cycle = std::llround(theta / (2.0 * std::acos(-1.0)));
   Contact c;
   for (int slice = 0; slice < kinematics_.num_slices(); ++slice) {
     const std::pair<GearSlicePose, GearSlicePose> poses = kinematics_.SlicePoses(q, theta, slice);
@@ -353,7 +362,16 @@ void ContactMeshCore::DoCalcForces(NonlinearMeshCoreWorkspace& ws_base, double t
     const int count = std::min<int>(found, static_cast<int>(ws.candidates.size()));
     for (int n = 0; n < count; ++n) {
       const ToothPairCandidate& pair = ws.candidates[n];
+      // Pairing filter: tooth i of a member is in mesh in the cycles n ≡ i (mod z) (the numbering
+      // of mesh_kinematics.hpp); the candidate teeth lie within a few cycles of the current one,
+      // so each has one nearby cycle. A drive contact needs the same cycle (the pair that meshes),
+      // a coast contact the neighbouring one (the mate behind or ahead); other pairs of the
+      // pre-search's windows face each other a whole pitch apart and cannot touch.
+      const std::int64_t cycle_gap =
+          MeshCycle(pair.tooth1, z1, cycle) - MeshCycle(pair.tooth2, z2, cycle);
       for (const FlankSide side : {FlankSide::kDrive, FlankSide::kCoast}) {
+        if (side == FlankSide::kDrive ? cycle_gap != 0 : (cycle_gap != 1 && cycle_gap != -1))
+          continue;
         if (!EvalContact(x, v, theta, theta_rate, slice, poses, pair.tooth1, pair.tooth2, side,
                          &c)) {
           continue;

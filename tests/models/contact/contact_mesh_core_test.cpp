@@ -147,33 +147,42 @@ TEST(ContactMeshCoreTest, PowerIdentityHoldsAtRandomStates) {
 // −Σ k δ⁺ ∂δ/∂q over ALL tooth pairs, slices and flanks evaluated by the kinematics' own chain
 // (EvalToothPair): no pre-search, a different code path.
 TEST(ContactMeshCoreTest, BodyForcesEqualTheSumOverAllToothPairs) {
-  for (const int slices : {1, 3}) {
-    const auto setup = MakeContactPair(KimRigPair(150.05), 1, 0.3);  // with backlash
-    ContactMeshDef def;
-    def.law = LinearContactLaw(4e8, 0.0);
-    def.face_slices = slices;
-    const ContactMeshCore core(setup.pair, setup.frame, def);
-    auto ws = core.MakeWorkspace();
-    for (const double approach : {3e-6, -0.06e-3}) {  // drive contact; coast after the backlash
-      State s = LoadedState(core, 3, approach);
-      s.v.setZero();
-      const NonlinearMeshCoreOutput out = Eval(core, *ws, s, false);
-      ASSERT_GT(out.num_contacts, 0) << approach;
-      Vector12 ref = Vector12::Zero();
-      const Vector12 q = s.x.head<12>();
-      const ContactMeshKinematics& kin = core.kinematics();
-      for (int slice = 0; slice < slices; ++slice) {
-        for (int i1 = 0; i1 < 50; ++i1) {
-          for (int i2 = 0; i2 < 50; ++i2) {
-            for (const FlankSide side : {FlankSide::kDrive, FlankSide::kCoast}) {
-              const SliceToothContact c = kin.EvalToothPair(q, s.theta, slice, i1, i2, side);
-              if (!c.transverse.found || !c.transverse.valid || c.penetration <= 0.0) continue;
-              ref -= (4e8 / slices) * c.penetration * c.d_penetration;
+  for (const GearPairSpec& spec : {KimRigPair(150.05), test::UnequalSpurPair()}) {  // backlash
+    for (const int slices : {1, 3}) {
+      const auto setup = MakeContactPair(spec, 1, 0.3);
+      ContactMeshDef def;
+      def.law = LinearContactLaw(4e8, 0.0);
+      def.face_slices = slices;
+      const ContactMeshCore core(setup.pair, setup.frame, def);
+      auto ws = core.MakeWorkspace();
+      const int z1 = setup.pair.pinion.teeth, z2 = setup.pair.gear.teeth;
+      // Drive contact; coast contact after the backlash j_bn is closed.
+      for (const double approach : {3e-6, -(setup.pair.backlash_normal + 3e-6)}) {
+        for (const unsigned seed : {3u, 4u}) {
+          State s = LoadedState(core, seed, approach);
+          s.v.setZero();
+          const NonlinearMeshCoreOutput out = Eval(core, *ws, s, false);
+          ASSERT_GT(out.num_contacts, 0) << approach;
+          Vector12 ref = Vector12::Zero();
+          const Vector12 q = s.x.head<12>();
+          const ContactMeshKinematics& kin = core.kinematics();
+          for (int slice = 0; slice < slices; ++slice) {
+            for (int i1 = 0; i1 < z1; ++i1) {
+              for (int i2 = 0; i2 < z2; ++i2) {
+                for (const FlankSide side : {FlankSide::kDrive, FlankSide::kCoast}) {
+                  const SliceToothContact c = kin.EvalToothPair(q, s.theta, slice, i1, i2, side);
+                  if (!c.transverse.found || !c.transverse.valid || c.penetration <= 0.0) {
+                    continue;
+                  }
+                  ref -= (4e8 / slices) * c.penetration * c.d_penetration;
+                }
+              }
             }
           }
+          EXPECT_LT((out.force.head<12>() - ref).norm(), 1e-9 * ref.norm())
+              << z1 << "/" << z2 << " approach " << approach << " seed " << seed;
         }
       }
-      EXPECT_LT((out.force.head<12>() - ref).norm(), 1e-9 * ref.norm()) << approach;
     }
   }
 }
