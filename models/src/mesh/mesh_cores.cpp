@@ -123,14 +123,16 @@ const char* ToString(MeshModelLevel level) {
       return "lti";
     case MeshModelLevel::kTorsional:
       return "torsional";
+    case MeshModelLevel::kContact:
+      return "contact";
   }
   return "unknown";
 }
 
 std::optional<MeshModelLevel> ParseMeshModelLevel(std::string_view name) {
-  for (MeshModelLevel level :
-       {MeshModelLevel::kNonlinearSlices, MeshModelLevel::kBlankenshipSingh,
-        MeshModelLevel::kCoupling4Dof, MeshModelLevel::kMeanLti, MeshModelLevel::kTorsional}) {
+  for (MeshModelLevel level : {MeshModelLevel::kNonlinearSlices, MeshModelLevel::kBlankenshipSingh,
+                               MeshModelLevel::kCoupling4Dof, MeshModelLevel::kMeanLti,
+                               MeshModelLevel::kTorsional, MeshModelLevel::kContact}) {
     if (name == ToString(level)) return level;
   }
   return std::nullopt;
@@ -158,6 +160,11 @@ LinearMeshCore MakeLinearMeshCore(const MeshCoreSource& source, MeshModelLevel l
       GEARDYN_THROW_UNLESS(false,
                            "level: 'slices' is not a linear level; use MakeSliceMeshCore "
                            "or MakeMeshCore");
+      break;
+    case MeshModelLevel::kContact:
+      GEARDYN_THROW_UNLESS(false,
+                           "level: 'contact' is not a linear level (a tooth-contact "
+                           "NonlinearMeshCore, built by BuildMeshCore)");
       break;
     case MeshModelLevel::kBlankenshipSingh:
     case MeshModelLevel::kMeanLti:

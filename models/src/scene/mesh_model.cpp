@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/models/contact/contact_mesh_core.hpp"
 #include "geardyn/models/mesh/transmission_error.hpp"
 #include "geardyn/models/scene/mesh_transmission_error.hpp"
 #include "geardyn/models/scene/planetary.hpp"
@@ -55,6 +56,7 @@ MeshCoreLevel CoreLevel(MeshModelLevel level) {
     case MeshModelLevel::kBlankenshipSingh:
     case MeshModelLevel::kMeanLti:
     case MeshModelLevel::kNonlinearSlices:
+    case MeshModelLevel::kContact:
       break;
   }
   return MeshCoreLevel::kBlankenshipSingh;
@@ -255,6 +257,15 @@ BuiltMeshCore BuildMeshCore(const Scene& scene, const MeshDef& mesh, bool transm
   for (const std::string& w : mesh.geometry.warnings)
     warnings.push_back("mesh." + mesh.name + ": " + w);
   const int drive_sign = MeshDriveSign(scene, mesh, &warnings);
+  // The tooth-contact core needs the placed frame (BuildSceneSystem, time-domain analyses).
+  GEARDYN_THROW_UNLESS(model.level != MeshModelLevel::kContact,
+                       "mesh." << mesh.name
+                               << ".model: \"contact\" (tooth contact with tooth bodies) is "
+                                  "integrated in time only; for this use run the mesh with --set "
+                                  "mesh."
+                               << mesh.name
+                               << ".model=slices (contact loss, backlash) or =blankenship_singh "
+                                  "(the linear LTV model)");
   if (model.parameters) {
     return {MakeUserCore(mesh), std::nullopt, drive_sign, std::move(warnings)};
   }
@@ -281,6 +292,29 @@ BuiltMeshCore BuildMeshCore(const Scene& scene, const MeshDef& mesh, bool transm
   }
   MeshCore core = MakeMeshCore(source, options);
   return {std::move(core), std::move(source.contact_lines), drive_sign, std::move(warnings)};
+}
+
+std::shared_ptr<const NonlinearMeshCore> BuildContactMeshCore(const Scene& scene,
+                                                              const MeshDef& mesh,
+                                                              const MeshFrame& frame) {
+  const std::string prefix = "mesh." + mesh.name;
+  try {
+    const ContactMeshDef def = mesh.model.contact.value_or(ContactMeshDef{});
+    auto core = std::make_shared<const ContactMeshCore>(mesh.geometry, frame, def,
+                                                        mesh.model.modifications);
+    const ToothSet* sets[2] = {&core->pinion_teeth(), &core->gear_teeth()};
+    const std::string* names[2] = {&mesh.pinion, &mesh.gear};
+    for (int k = 0; k < 2; ++k) {
+      for (const GearDef& g : scene.gears) {
+        if (g.name == *names[k] && g.mass && g.inertia) {
+          CheckTrunkInertia(*sets[k], *g.mass, *g.inertia, "gear." + g.name);
+        }
+      }
+    }
+    return core;
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(prefix + ".contact: " + e.what());
+  }
 }
 
 }  // namespace geardyn

@@ -21,9 +21,9 @@ constexpr int kMaxTableSamples = 1 << 20;
 /// steel pairs have about 2e10 N/m², plastics a few 1e8 N/m²).
 constexpr double kMinStiffnessPerLength = 1e6;
 
-constexpr std::array<MeshModelLevel, 5> kLevels = {
-    MeshModelLevel::kBlankenshipSingh, MeshModelLevel::kCoupling4Dof, MeshModelLevel::kMeanLti,
-    MeshModelLevel::kTorsional, MeshModelLevel::kNonlinearSlices};
+constexpr std::array<MeshModelLevel, 6> kLevels = {
+    MeshModelLevel::kBlankenshipSingh, MeshModelLevel::kCoupling4Dof,    MeshModelLevel::kMeanLti,
+    MeshModelLevel::kTorsional,        MeshModelLevel::kNonlinearSlices, MeshModelLevel::kContact};
 
 struct FormName {
   std::string_view name;
@@ -89,6 +89,12 @@ MeshDamping ReadDamping(const Fields& f) {
   return MeshDamping::None();
 }
 
+// Keys of the contact-line levels that the tooth-contact model does not use (it has its own law,
+// damping and flank geometry: [mesh.contact]).
+constexpr std::array<std::string_view, 10> kNotContactKeys = {
+    "stiffness_per_length", "damping_ratio", "damping", "coefficient_form", "fourier_terms",
+    "fourier_tolerance",    "table_samples", "slices",  "parameters",       "errors"};
+
 // Keys that configure the contact-line model, rejected next to [mesh.parameters].
 constexpr std::array<std::string_view, 8> kContactLineKeys = {
     "stiffness_per_length", "coefficient_form", "fourier_terms", "fourier_tolerance",
@@ -100,6 +106,19 @@ MeshModelDef ReadMeshModel(const Fields& f, const GearDef& pinion, const GearDef
                            const GearPairGeometry& geometry) {
   MeshModelDef def;
   def.level = ReadLevel(f);
+  if (def.level == MeshModelLevel::kContact) {
+    for (const std::string_view key : kNotContactKeys) {
+      if (f.Find(key) != nullptr) {
+        f.Fail(key,
+               "not used by model = \"contact\" (the tooth contact takes its law, damping and "
+               "flanks from [mesh.contact] and [mesh.modifications]; remove it or choose another "
+               "model)");
+      }
+    }
+  }
+  if (const toml::table* t = f.OptTable("contact")) {
+    def.contact = ReadContactMesh(Fields(f.context(), *t, f.Key("contact")), geometry);
+  }
   const bool slices = def.level == MeshModelLevel::kNonlinearSlices;
   const std::string model_text =
       std::string("this mesh's model is \"") + ToString(def.level) + "\"";

@@ -21,6 +21,12 @@ inline constexpr double kMaxDeviation = 1e-3;
 MeshModelDef ReadMeshModel(const Fields& f, const GearDef& pinion, const GearDef& gear,
                            const GearPairGeometry& geometry);
 
+/// @brief Reads [mesh.contact] (contact_mesh_reader.cpp): unknown keys, keys that do not apply
+/// to the chosen teeth, law, friction or profile, and values out of range fail.
+/// @param[in] f the sub-table, prefixed "mesh.NAME.contact"
+/// @param[in] geometry the pair (gear kinds, tip thicknesses)
+ContactMeshDef ReadContactMesh(const Fields& f, const GearPairGeometry& geometry);
+
 /// @brief Reads [mesh.modifications] (tooth_data_reader.cpp).
 /// @param[in] f the sub-table, prefixed "mesh.NAME.modifications"
 /// @param[in] geometry the pair (relief lengths are at most its path of contact g_α)

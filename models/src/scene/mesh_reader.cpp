@@ -93,7 +93,7 @@ MeshDef ReadMesh(const ErrorContext& ctx, const toml::table& t, std::size_t inde
       ctx, t, "mesh", index,
       {"name", "pinion", "gear", "center_distance", "model", "slices", "stiffness_per_length",
        "damping_ratio", "damping", "coefficient_form", "fourier_terms", "fourier_tolerance",
-       "table_samples", "modifications", "errors", "parameters"});
+       "table_samples", "modifications", "errors", "parameters", "contact"});
   const Fields named(ctx, t, ElementPrefix(t, "mesh", index));
   m.pinion = named.ReqString("pinion", "name of the driving [[gear]]");
   m.gear = named.ReqString("gear", "name of the driven [[gear]]");

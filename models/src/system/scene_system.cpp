@@ -93,6 +93,15 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
   std::string why;
   GEARDYN_THROW_UNLESS(options.IsValid(&why), why);
   GEARDYN_THROW_UNLESS(!scene.gears.empty(), "scene: no gears");
+  for (const MeshDef& m : scene.meshes) {
+    GEARDYN_THROW_UNLESS(
+        options.allow_contact_meshes || m.model.level != MeshModelLevel::kContact,
+        "mesh." << m.name << ".model: \"contact\" is the time-domain tooth-contact model "
+                << "(geardyn simulate); " << options.analysis
+                << " needs a linear or slice mesh core: run it with --set mesh." << m.name
+                << ".model=slices (contact loss, backlash) or =blankenship_singh (the linear LTV "
+                   "model)");
+  }
   const int num_gears = static_cast<int>(scene.gears.size());
   const int num_meshes = static_cast<int>(scene.meshes.size());
   for (const auto& [name, angle] : options.mesh_angles) {
@@ -325,9 +334,16 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
     const MeshDef& m = scene.meshes[k];
     const int p = GearIndex(scene, m.pinion);
     const int w = GearIndex(scene, m.gear);
-    BuiltMeshCore built = BuildMeshCore(scene, m, options.transmission_error, options.runout_form);
+    const bool contact = m.model.level == MeshModelLevel::kContact;  // allowed above
+    BuiltMeshCore built =
+        contact ? BuiltMeshCore{std::shared_ptr<const NonlinearMeshCore>(), std::nullopt, 1, {}}
+                : BuildMeshCore(scene, m, options.transmission_error, options.runout_form);
+    if (contact) built.drive_sign = MeshDriveSign(scene, m, &built.warnings);
     for (std::string& warning : built.warnings) out.warnings.push_back(std::move(warning));
     const MeshFrame frame = CalcMeshFrame(m.geometry, out.centres[p], gamma[k], built.drive_sign);
+    if (contact) {
+      built.core = BuildContactMeshCore(scene, m, frame);
+    }
     Matrix2x12 G = CalcMeshJacobian(frame);
     if (const auto* linear = std::get_if<LinearMeshCore>(&built.core)) {
       G = CalcLevelJacobian(linear->level(), G);

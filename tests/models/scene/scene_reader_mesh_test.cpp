@@ -35,7 +35,7 @@ void AddMeshModelCases(const std::string& base, const std::string& helical,
   // --- [[mesh]] keys ---
   add("MeshUnknownModel", mesh("model = \"coupling4\"\n"), "model = \"coupling4\"",
       R"(^t\.toml:{line}: mesh\.pinion-wheel\.model: unknown model 'coupling4'; models: )"
-      R"(blankenship_singh, coupling_4dof, lti, torsional, slices$)");
+      R"(blankenship_singh, coupling_4dof, lti, torsional, slices, contact$)");
   add("MeshMisspeltModel", mesh("model = \"torsinal\"\n"), "model = \"torsinal\"",
       R"(^t\.toml:{line}: mesh\.pinion-wheel\.model: unknown model 'torsinal' \(did you mean )"
       R"('torsional'\?\); models: )");

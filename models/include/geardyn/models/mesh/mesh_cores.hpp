@@ -105,9 +105,13 @@ enum class MeshModelLevel {
   kMeanLti,  ///< LTI: mean K̄2 of the B–S core, ε(θ) kept (for the LTI of another shape, apply
              ///< MakeMeanLinearMeshCore to that level's core)
   kTorsional,  ///< torsional SDOF
+  /// Tooth contact with tooth bodies (spec 03; [mesh.contact], contact_mesh_def.hpp): a
+  /// NonlinearMeshCore for time-domain analyses only; MakeMeshCore refuses it (BuildMeshCore).
+  kContact,
 };
 
-/// Name of a level: "slices", "blankenship_singh", "coupling_4dof", "lti", "torsional".
+/// Name of a level: "slices", "blankenship_singh", "coupling_4dof", "lti", "torsional",
+/// "contact".
 const char* ToString(MeshModelLevel level);
 /// The level named `name` (as ToString), or nullopt.
 std::optional<MeshModelLevel> ParseMeshModelLevel(std::string_view name);
@@ -137,8 +141,9 @@ struct MeshCoreOptions {
   SliceCoefficientOptions slices;      ///< kNonlinearSlices: representation of k_s, e_s
 };
 
-/// @brief A linear core of `level` (not kNonlinearSlices) from the source.
-/// @throws InvalidInput naming `level` (kNonlinearSlices), `options` fields, or as the core.
+/// @brief A linear core of `level` (not kNonlinearSlices or kContact) from the source.
+/// @throws InvalidInput naming `level` (kNonlinearSlices, kContact), `options` fields, or as the
+///   core.
 LinearMeshCore MakeLinearMeshCore(const MeshCoreSource& source, MeshModelLevel level,
                                   const MeshCoefficientOptions& options = {});
 

@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "geardyn/models/contact/contact_mesh_def.hpp"
 #include "geardyn/models/mesh/contact_lines.hpp"
 #include "geardyn/models/mesh/mesh_cores.hpp"
 #include "geardyn/models/mesh/tooth_modifications.hpp"
@@ -33,8 +34,9 @@
 
 namespace geardyn {
 
-struct Scene;    // scene.hpp (which includes this header: MeshDef holds a MeshModelDef)
-struct MeshDef;  // scene.hpp
+struct Scene;      // scene.hpp (which includes this header: MeshDef holds a MeshModelDef)
+struct MeshFrame;  // mesh_frame.hpp
+struct MeshDef;    // scene.hpp
 
 /// @brief Mesh parameters given by the user (spec 01 §4.3: tables or Fourier series from a
 /// loaded tooth contact analysis or a measurement), replacing the contact-line model.
@@ -80,6 +82,10 @@ struct MeshModelDef {
   /// User K, h, μ (and ε): replaces the contact-line model when set; not with kNonlinearSlices
   /// (the slices need the contact lines), nor with modifications/errors/stiffness_per_length.
   std::optional<UserMeshParameters> parameters;
+  /// The [mesh.contact] table (tooth contact, spec 03), if given. It is read and checked with any
+  /// level (so that `--set mesh.NAME.model=...` switches levels without editing the file) and used
+  /// by kContact only, which takes the defaults of ContactMeshDef without it.
+  std::optional<ContactMeshDef> contact;
 };
 
 /// @brief The core of one scene mesh with what it was built from.
@@ -131,7 +137,19 @@ int MeshDriveSign(const Scene& scene, const MeshDef& mesh,
 /// @param[in] transmission_error false: no ε from the contact lines (modifications and tooth
 ///   errors ignored: for analyses of the mean operator only; SceneSystemOptions).
 /// @param[in] runout how a runout reaches a linear core (RunoutForm).
+/// @throws InvalidInput for model = "contact" (BuildContactMeshCore needs the placed frame; the
+///   message names the mesh and the way out, `--set mesh.NAME.model=slices`).
 BuiltMeshCore BuildMeshCore(const Scene& scene, const MeshDef& mesh, bool transmission_error = true,
                             RunoutForm runout = RunoutForm::kTable);
+
+/// @brief The tooth-contact core (contact_mesh_core.hpp) of a mesh of model = "contact", placed
+/// in `frame` (its centres, line of centres and drive sign: CalcMeshFrame), with the settings of
+/// [mesh.contact] (ContactMeshDef defaults without the table) and [mesh.modifications]. The
+/// gears' trunks must keep a positive inertia and mass (CheckTrunkInertia) when the scene gives
+/// them.
+/// @throws InvalidInput starting "mesh.NAME" (as ContactMeshCore or CheckTrunkInertia).
+std::shared_ptr<const NonlinearMeshCore> BuildContactMeshCore(const Scene& scene,
+                                                              const MeshDef& mesh,
+                                                              const MeshFrame& frame);
 
 }  // namespace geardyn

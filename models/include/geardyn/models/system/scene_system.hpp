@@ -90,6 +90,12 @@ struct SceneSystemOptions {
   /// What the model is built for, named by the error when a body lacks `mass` or `inertia`
   /// (optional in a scene): "<file>:<line>: gear.pinion.mass: required by modes (mass matrix)".
   std::string analysis = "the system model";
+  /// Build meshes of model = "contact" (a NonlinearMeshCore with tooth coordinates): true only
+  /// for time-domain analyses. False: such a mesh is refused with InvalidInput naming the mesh,
+  /// `analysis` and the way out (`--set mesh.NAME.model=slices`): the linear and harmonic-balance
+  /// analyses, modes and Floquet need a linear or slice core, and a linearisation of the contact
+  /// model is not offered (its tangent at one state is not the operator those analyses assume).
+  bool allow_contact_meshes = false;
   /// False (with the field and value in `why`) on a non-finite angle or origin.
   bool IsValid(std::string* why) const;
 };

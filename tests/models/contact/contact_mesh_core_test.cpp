@@ -1,0 +1,266 @@
+// ContactMeshCore (contact_mesh_core.hpp): analytic Jacobians against finite differences, the
+// power identity at random states (E by finite differences along the motion), the forces on the
+// bodies against an independent sum over all tooth pairs with the kinematics' own contact chain,
+// and the tangent mesh stiffness of rigid teeth with the linear law against the slice model of
+// the same pair (the contact-line stiffness).
+#include "geardyn/models/contact/contact_mesh_core.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "geardyn/common/errors.hpp"
+#include "geardyn/models/mesh/mesh_cores.hpp"
+#include "geardyn/models/mesh/mesh_jacobian.hpp"
+#include "support/contact_pairs.hpp"
+#include "support/expect_throws.hpp"
+
+namespace geardyn {
+namespace {
+
+using test::KimRigPair;
+using test::MakeContactPair;
+
+ContactMeshDef RevoluteDef() {
+  ContactMeshDef def;
+  def.teeth = ToothBodyType::kRevolute;
+  def.bending_stiffness = 11.5e3;  // Kim Table 3 in SI
+  def.bending_damping = 2e-4;
+  def.friction_coefficient = 0.06;
+  return def;
+}
+
+// A loaded state: the pinion turned ahead by `approach` along the line of action (drive flanks
+// in contact), small random body and tooth coordinates, random velocities.
+struct State {
+  VectorX x, v;
+  double theta = 0.0, theta_rate = 0.0;
+};
+State LoadedState(const ContactMeshCore& core, unsigned seed, double approach) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int n = core.num_coordinates();
+  State s;
+  s.x = VectorX::Zero(n);
+  s.v = VectorX::Zero(n);
+  const double rb1 = core.kinematics().pinion().base_radius;
+  for (int i = 0; i < 12; ++i) {
+    s.x(i) = (i % 6 < 3 ? 1e-7 : 1e-7 / 0.07) * u(rng);  // 0.1 µm, the rotations alike
+    s.v(i) = (i % 6 < 3 ? 1e-3 : 1e-3 / 0.07) * u(rng);
+  }
+  s.x(5) += approach / rb1;
+  for (int i = 12; i < n; ++i) {
+    s.x(i) = 2e-6 * u(rng);  // tooth rotations of µrad
+    s.v(i) = 1e-2 * u(rng);
+  }
+  s.theta = 0.3 + 0.5 * u(rng);
+  s.theta_rate = 2.0 * std::acos(-1.0) * 2000.0;  // 2 kHz mesh frequency
+  return s;
+}
+
+NonlinearMeshCoreOutput Eval(const ContactMeshCore& core, NonlinearMeshCoreWorkspace& ws,
+                             const State& s, bool jac) {
+  NonlinearMeshCoreOutput out = core.MakeOutput();
+  core.CalcForces(ws, s.theta, s.theta_rate, s.x, s.v, jac, &out);
+  return out;
+}
+
+TEST(ContactMeshCoreTest, DofCountsAndMassAreKims) {
+  const auto setup = MakeContactPair(KimRigPair());
+  ContactMeshDef a = RevoluteDef();
+  const ContactMeshCore core_a(setup.pair, setup.frame, a);
+  EXPECT_EQ(core_a.num_coordinates(), 112);  // 12 + 100 (Kim: 2 + 100 on the torsional rig)
+  a.teeth = ToothBodyType::kBushing;
+  const ContactMeshCore core_b(setup.pair, setup.frame, a);
+  EXPECT_EQ(core_b.num_coordinates(), 312);
+  EXPECT_EQ(core_b.InternalMass().rows(), 312);
+  EXPECT_EQ(core_b.channel_names().size(), 100u + 50u + 300u);
+}
+
+// −∂force/∂x and −∂force/∂v by central differences; the omitted geometric terms are of relative
+// size f/(k L) (contact_mesh_core.hpp), so columns agree to 1e-3 of the largest entry.
+TEST(ContactMeshCoreTest, JacobiansMatchFiniteDifferences) {
+  const auto setup = MakeContactPair(KimRigPair());
+  for (const ToothBodyType type :
+       {ToothBodyType::kRigid, ToothBodyType::kRevolute, ToothBodyType::kBushing}) {
+    ContactMeshDef def = RevoluteDef();
+    def.teeth = type;
+    const ContactMeshCore core(setup.pair, setup.frame, def);
+    auto ws = core.MakeWorkspace();
+    const State s = LoadedState(core, 7, 3e-6);
+    const NonlinearMeshCoreOutput out = Eval(core, *ws, s, true);
+    ASSERT_GT(out.num_contacts, 0) << ToString(type);
+    const int n = core.num_coordinates();
+    MatrixX fd_k(n, n), fd_c(n, n);
+    for (int j = 0; j < n; ++j) {
+      const double hx = j < 12 ? (j % 6 < 3 ? 1e-10 : 1e-9) : 1e-9;
+      State p = s, m = s;
+      p.x(j) += hx;
+      m.x(j) -= hx;
+      fd_k.col(j) = -(Eval(core, *ws, p, false).force - Eval(core, *ws, m, false).force) / (2 * hx);
+      const double hv = 1e-4;
+      p = s;
+      m = s;
+      p.v(j) += hv;
+      m.v(j) -= hv;
+      fd_c.col(j) = -(Eval(core, *ws, p, false).force - Eval(core, *ws, m, false).force) / (2 * hv);
+    }
+    const double scale_k = fd_k.cwiseAbs().maxCoeff();
+    const double scale_c = fd_c.cwiseAbs().maxCoeff();
+    EXPECT_LT((out.stiffness - fd_k).cwiseAbs().maxCoeff(), 1e-3 * scale_k) << ToString(type);
+    EXPECT_LT((out.damping - fd_c).cwiseAbs().maxCoeff(), 1e-3 * scale_c) << ToString(type);
+  }
+}
+
+// force·v = −dE/dt + P − D with dE/dt = (E(x + h v, θ + h θ̇) − E(x − h v, θ − h θ̇))/(2h).
+TEST(ContactMeshCoreTest, PowerIdentityHoldsAtRandomStates) {
+  const auto setup = MakeContactPair(KimRigPair());
+  for (const ToothBodyType type :
+       {ToothBodyType::kRigid, ToothBodyType::kRevolute, ToothBodyType::kBushing}) {
+    ContactMeshDef def = RevoluteDef();
+    def.teeth = type;
+    const ContactMeshCore core(setup.pair, setup.frame, def);
+    auto ws = core.MakeWorkspace();
+    for (unsigned seed = 1; seed <= 5; ++seed) {
+      const State s = LoadedState(core, seed, 2e-6);
+      const NonlinearMeshCoreOutput out = Eval(core, *ws, s, false);
+      ASSERT_GT(out.num_contacts, 0);
+      const double h = 1e-9;  // s: the state moves by ≈ 1e-12 m, below the kinks' spacing
+      State p = s, m = s;
+      p.x += h * s.v;
+      m.x -= h * s.v;
+      p.theta += h * s.theta_rate;
+      m.theta -= h * s.theta_rate;
+      const double de =
+          (Eval(core, *ws, p, false).energy - Eval(core, *ws, m, false).energy) / (2 * h);
+      const double lhs = out.force.dot(s.v);
+      const double rhs = -de + out.phase_power - out.dissipation_power;
+      const double scale = std::abs(lhs) + std::abs(out.phase_power) + out.dissipation_power;
+      EXPECT_NEAR(lhs, rhs, 1e-5 * scale) << ToString(type) << " seed " << seed;
+      EXPECT_GE(out.dissipation_power, 0.0);
+    }
+  }
+}
+
+// Rigid teeth, the linear law without damping: the forces on the 12 body coordinates are
+// −Σ k δ⁺ ∂δ/∂q over ALL tooth pairs, slices and flanks evaluated by the kinematics' own chain
+// (EvalToothPair): no pre-search, a different code path.
+TEST(ContactMeshCoreTest, BodyForcesEqualTheSumOverAllToothPairs) {
+  for (const GearPairSpec& spec : {KimRigPair(150.05), test::UnequalSpurPair()}) {  // backlash
+    for (const int slices : {1, 3}) {
+      const auto setup = MakeContactPair(spec, 1, 0.3);
+      ContactMeshDef def;
+      def.law = LinearContactLaw(4e8, 0.0);
+      def.face_slices = slices;
+      const ContactMeshCore core(setup.pair, setup.frame, def);
+      auto ws = core.MakeWorkspace();
+      const int z1 = setup.pair.pinion.teeth, z2 = setup.pair.gear.teeth;
+      // Drive contact; coast contact after the backlash j_bn is closed.
+      for (const double approach : {3e-6, -(setup.pair.backlash_normal + 3e-6)}) {
+        for (const unsigned seed : {3u, 4u}) {
+          State s = LoadedState(core, seed, approach);
+          s.v.setZero();
+          const NonlinearMeshCoreOutput out = Eval(core, *ws, s, false);
+          ASSERT_GT(out.num_contacts, 0) << approach;
+          Vector12 ref = Vector12::Zero();
+          const Vector12 q = s.x.head<12>();
+          const ContactMeshKinematics& kin = core.kinematics();
+          for (int slice = 0; slice < slices; ++slice) {
+            for (int i1 = 0; i1 < z1; ++i1) {
+              for (int i2 = 0; i2 < z2; ++i2) {
+                for (const FlankSide side : {FlankSide::kDrive, FlankSide::kCoast}) {
+                  const SliceToothContact c = kin.EvalToothPair(q, s.theta, slice, i1, i2, side);
+                  if (!c.transverse.found || !c.transverse.valid || c.penetration <= 0.0) {
+                    continue;
+                  }
+                  ref -= (4e8 / slices) * c.penetration * c.d_penetration;
+                }
+              }
+            }
+          }
+          EXPECT_LT((out.force.head<12>() - ref).norm(), 1e-9 * ref.norm())
+              << z1 << "/" << z2 << " approach " << approach << " seed " << seed;
+        }
+      }
+    }
+  }
+}
+
+// Rigid teeth with the linear law k δ at a state where every tooth pair of the zone is loaded:
+// the tangent stiffness along the pinion rotation, K(5,5)/G(0,5)², is Σ k over the loaded
+// contacts, and equals the contact-line model's K(θ) = k_l L(θ) with k_l = k/B (the slice core's
+// Σ k_s, built from the contact lines of the same pair). The phases keep ≥ 0.2 rad from the
+// 1↔2-pair changes (ε_α = 1.755: |θ| = 0.77): within ≈ 0.1 rad of them the loaded contact model
+// already touches with the entering tooth's tip corner (premature contact under the 1 µm approach,
+// which the contact-line model does not have: at 0.7 rad it finds two pairs, the lines one).
+TEST(ContactMeshCoreTest, RigidLinearStiffnessEqualsTheContactLineModel) {
+  const auto setup = MakeContactPair(KimRigPair());
+  const double k = 4e8, b = setup.pair.face_width;
+  ContactMeshDef def;
+  def.law = LinearContactLaw(k, 0.0);
+  const ContactMeshCore core(setup.pair, setup.frame, def);
+  auto ws = core.MakeWorkspace();
+  const SliceMeshCore slices =
+      MakeSliceMeshCore(MakeMeshCoreSource(setup.pair, StiffnessPerUnitLength{k / b}, 1), 4);
+  SliceMeshWorkspace sws(slices);
+  const Matrix2x12 g = CalcMeshJacobian(setup.frame);
+  for (const double theta : {-2.5, -1.0, 0.0, 0.5, 2.0}) {
+    State s;
+    s.x = VectorX::Zero(core.num_coordinates());
+    s.v = VectorX::Zero(core.num_coordinates());
+    s.x(5) = 1e-6 / core.kinematics().pinion().base_radius;  // 1 µm along the line of action
+    s.theta = theta;
+    const NonlinearMeshCoreOutput out = Eval(core, *ws, s, true);
+    const double k_eta = out.stiffness(5, 5) / (g(0, 5) * g(0, 5));
+    const double k_lines = EvalSliceChannels(slices, sws, theta)(0);
+    EXPECT_NEAR(k_eta, k_lines, 1e-6 * k_lines) << "theta " << theta;
+  }
+}
+
+// Static load sharing of rigid unmodified involutes (law of gearing: a rigid rotation of the
+// pinion by δ/r_b1 gives every pair on the line of action the same penetration δ): in the
+// two-pair zone two pinion teeth carry k δ each, in the one-pair zone one tooth carries it, and
+// the moment on the pinion is −Σ f r_b1.
+TEST(ContactMeshCoreTest, RigidTeethShareTheStaticLoadEqually) {
+  const auto setup = MakeContactPair(KimRigPair());
+  const double k = 4e8, delta = 1e-6;
+  ContactMeshDef def;
+  def.law = LinearContactLaw(k, 0.0);
+  const ContactMeshCore core(setup.pair, setup.frame, def);
+  auto ws = core.MakeWorkspace();
+  const double rb1 = core.kinematics().pinion().base_radius;
+  for (const auto& [theta, pairs] : {std::pair{0.0, 1}, std::pair{2.0, 2}, std::pair{-2.2, 2}}) {
+    State s;
+    s.x = VectorX::Zero(core.num_coordinates());
+    s.v = VectorX::Zero(core.num_coordinates());
+    s.x(5) = delta / rb1;
+    s.theta = theta;
+    const NonlinearMeshCoreOutput out = Eval(core, *ws, s, false);
+    int loaded = 0;
+    for (int t = 0; t < 50; ++t) {
+      const double f = out.channels(t);  // pinion tooth t [N]
+      if (f == 0.0) continue;
+      ++loaded;
+      EXPECT_NEAR(f, k * delta, 1e-9 * k * delta) << "theta " << theta << " tooth " << t;
+      EXPECT_EQ(out.channels(100 + t), 1.0);  // status: drive flank
+      // Switching function of (slice 0, drive, tooth t): the signed gap −δ.
+      EXPECT_NEAR(out.switching(t), -delta, 1e-12) << "theta " << theta << " tooth " << t;
+    }
+    EXPECT_EQ(loaded, pairs) << "theta " << theta;
+    EXPECT_NEAR(out.force(5), -pairs * k * delta * rb1, 1e-9 * k * delta * rb1);
+  }
+}
+
+TEST(ContactMeshCoreTest, UnsupportedOptionsAreRefused) {
+  const auto helical = MakeContactPair(test::HelicalPair());
+  EXPECT_THROWS_MESSAGE(ContactMeshCore(helical.pair, helical.frame, RevoluteDef()), InvalidInput,
+                        "def.teeth");
+  const auto spur = MakeContactPair(KimRigPair());
+  ContactMeshDef def;
+  def.profile = ContactProfile::kBiarc;
+  EXPECT_THROWS_MESSAGE(ContactMeshCore(spur.pair, spur.frame, def), InvalidInput, "def.profile");
+}
+
+}  // namespace
+}  // namespace geardyn
