@@ -77,6 +77,8 @@ struct SceneChart {
   std::vector<double> natural_frequencies_hz;
   long model_builds = 0;    ///< SystemModels built (rows + points + bisection steps)
   long refined_points = 0;  ///< evaluations repeated at verdict_tolerance
+  /// Grid rows whose model is prepared for Floquet at any speed (PreparedFloquet::prepared()).
+  long prepared_rows = 0;
   std::vector<std::string> warnings;
 };
 
