@@ -97,8 +97,9 @@ class ChartContext {
       Built b = BuildParameter(param, axis.Value(i), speed);
       // Every point of a row is a Floquet solve of this model at another speed: build the
       // frequency-independent part once (prepared_floquet.hpp).
-      b.prepared = std::make_shared<const PreparedFloquet>(b.model, s_.floquet);
-      prepared_rows_ += b.prepared->prepared() ? 1 : 0;
+      if (s_.prepare_rows)
+        b.prepared = std::make_shared<const PreparedFloquet>(b.model, s_.floquet);
+      prepared_rows_ += b.prepared && b.prepared->prepared() ? 1 : 0;
       rows_.push_back(std::move(b));
     }
   }

@@ -53,6 +53,9 @@ struct StateSystem {
   std::vector<SparseMatrix> sparse_step_matrices;
   /// A(t) into *A (dim × dim, sized by the caller); empty when the system has no callback/steps.
   std::function<void(double t, MatrixX* A)> evaluate;
+  /// True when every A(t) of `evaluate` has MakeStateSystem's companion form [[0, ω_s I], [X, Y]]
+  /// exactly (zero and ω_s·I upper blocks): the Magnus commutators then go by blocks (magnus.cpp).
+  bool companion = false;
   /// Where A(t) is not smooth [s]: sorted, distinct, in (0, T) (0 and T are always step ends);
   /// from PeriodicSecondOrderSystem::kinks_s and the step starts (MagnusGrid).
   std::vector<double> kinks;
