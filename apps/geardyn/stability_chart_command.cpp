@@ -88,6 +88,7 @@ nlohmann::json MakeChartReport(const SceneChartSettings& settings, const SceneCh
           {"counters", c.summary.counters},
           {"model_builds", run.model_builds},
           {"refined_points", run.refined_points},
+          {"prepared_rows", run.prepared_rows},
           {"verdict_tolerance", settings.verdict_tolerance},
           {"num_points", c.stable.size()},
           {"num_unstable_points", unstable},

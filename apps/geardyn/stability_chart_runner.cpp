@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "geardyn/analyses/modal.hpp"
+#include "geardyn/analyses/prepared_floquet.hpp"
 #include "geardyn/common/errors.hpp"
 #include "geardyn/models/scene/scene_reader.hpp"
 #include "geardyn/models/system/scene_system.hpp"
@@ -45,6 +46,8 @@ double ParseNumber(const std::string& option, const std::string& text, const std
 // One scene state: its model, the first mesh's frequency and the speed it was built at.
 struct Built {
   std::shared_ptr<const SystemModel> model;
+  /// Grid rows only: the model prepared for Floquet at any speed (PreparedFloquet).
+  std::shared_ptr<const PreparedFloquet> prepared;
   double mesh_hz = 0.0;
   double rpm = 0.0;
   double hz_per_rpm() const { return rpm > 0.0 ? mesh_hz / rpm : 0.0; }
@@ -91,15 +94,24 @@ class ChartContext {
     const ChartAxis axis{param.path, param.lo, param.hi, param.num_points};
     rows_.clear();
     for (int i = 0; i < axis.num_points; ++i) {
-      rows_.push_back(BuildParameter(param, axis.Value(i), speed));
+      Built b = BuildParameter(param, axis.Value(i), speed);
+      // Every point of a row is a Floquet solve of this model at another speed: build the
+      // frequency-independent part once (prepared_floquet.hpp).
+      if (s_.prepare_rows)
+        b.prepared = std::make_shared<const PreparedFloquet>(b.model, s_.floquet);
+      prepared_rows_ += b.prepared && b.prepared->prepared() ? 1 : 0;
+      rows_.push_back(std::move(b));
     }
   }
+
+  long prepared_rows() const { return prepared_rows_; }
 
   const std::vector<Built>& rows() const { return rows_; }
 
   ChartPointResult Evaluate(const ChartPoint& p) const {
     double f_m = 0.0;
     std::shared_ptr<const SystemModel> model;
+    std::shared_ptr<const PreparedFloquet> prepared;
     if (speed_axis_ == 0) {
       const Built b = Build({Override(s_.x.path, p.x), Override(s_.y.path, p.y)});
       model = b.model;
@@ -112,20 +124,24 @@ class ChartContext {
           index >= 0 ? rows_[index]
                      : BuildParameter(on_x ? s_.y : s_.x, on_x ? p.y : p.x, on_x ? s_.x : s_.y);
       model = b.model;
+      prepared = b.prepared;
       f_m = b.hz_per_rpm() * rpm;
     }
     FloquetOptions options = s_.floquet;
     options.mesh_frequency_hz = f_m;
     options.magnus_measured_order = s_.measured_order;  // the screening run (see the @file)
     options.list_undamped_modes = false;  // the chart reads max|λ| and the verdict only
-    FloquetResult r = ComputeFloquet(*model, options);
+    auto floquet = [&](const FloquetOptions& o) {
+      return prepared ? prepared->Compute(o) : ComputeFloquet(*model, o);
+    };
+    FloquetResult r = floquet(options);
     // A growth above the threshold but within twice the estimate could be the screening
     // tolerance's error: resolve it at the verdict tolerance (see the @file).
     const double growth = r.max_abs_multiplier - 1.0 - s_.chart.instability_threshold;
     if (options.tolerance > s_.verdict_tolerance && growth > 0.0 &&
         growth <= 2.0 * r.summary.error_estimate) {
       options.tolerance = s_.verdict_tolerance;
-      r = ComputeFloquet(*model, options);
+      r = floquet(options);
       ++refined_;
     }
     ChartPointResult out;
@@ -142,6 +158,7 @@ class ChartContext {
   const SceneChartSettings& s_;
   int speed_axis_ = 0;  // 0 none, 1 x, 2 y
   std::vector<Built> rows_;
+  long prepared_rows_ = 0;
   mutable std::atomic<long> builds_{0};
   mutable std::atomic<long> refined_{0};
 };
@@ -270,6 +287,7 @@ SceneChart ComputeSceneStabilityChart(const SceneChartSettings& settings) {
   for (const std::string& w : out.chart.summary.warnings) out.warnings.push_back(w);
   out.model_builds = context.builds();
   out.refined_points = context.refined();
+  out.prepared_rows = context.prepared_rows();
   return out;
 }
 

@@ -21,6 +21,12 @@
 /// undamped modes) need no refinement; unstable points beyond twice the estimate keep their
 /// screening values.
 ///
+/// **Prepared rows.** With `prepare_rows` (the default) every row's model is wrapped in a
+/// PreparedFloquet (prepared_floquet.hpp): the scaled state system and A(θ) as its Fourier series
+/// in the phase, verified against the model's assembly, are built once per row, so a point costs
+/// the Magnus runs and the eigen-solve only. Points between rows (bisection) build their model and
+/// call ComputeFloquet.
+///
 /// **Labels.** Natural frequencies of the mean LTI system (ComputeModes of the model, mode
 /// numbers from 0 as `geardyn modes` prints them): per grid row when the speed is on x, otherwise
 /// those of the scene at the lower ends of the axes.
@@ -63,6 +69,10 @@ struct SceneChartSettings {
   /// a tight estimate at ≈ 2× fewer A(t) evaluations); false: the default control (benchmarks
   /// compare).
   bool measured_order = true;
+  /// Prepare every grid row's model once for Floquet at any speed (PreparedFloquet: the state
+  /// system and A(θ)'s Fourier series built once; same results to round-off); false: every point
+  /// calls ComputeFloquet on the row's model (benchmarks compare).
+  bool prepare_rows = true;
   StabilityChartOptions chart;  ///< threads, tolerances, progress (frequencies are set here)
 };
 
@@ -77,6 +87,8 @@ struct SceneChart {
   std::vector<double> natural_frequencies_hz;
   long model_builds = 0;    ///< SystemModels built (rows + points + bisection steps)
   long refined_points = 0;  ///< evaluations repeated at verdict_tolerance
+  /// Grid rows whose model is prepared for Floquet at any speed (PreparedFloquet::prepared()).
+  long prepared_rows = 0;
   std::vector<std::string> warnings;
 };
 

@@ -7,6 +7,7 @@
 #include <complex>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,9 @@ struct StateSystem {
   std::vector<SparseMatrix> sparse_step_matrices;
   /// A(t) into *A (dim × dim, sized by the caller); empty when the system has no callback/steps.
   std::function<void(double t, MatrixX* A)> evaluate;
+  /// True when every A(t) of `evaluate` has MakeStateSystem's companion form [[0, ω_s I], [X, Y]]
+  /// exactly (zero and ω_s·I upper blocks): the Magnus commutators then go by blocks (magnus.cpp).
+  bool companion = false;
   /// Where A(t) is not smooth [s]: sorted, distinct, in (0, T) (0 and T are always step ends);
   /// from PeriodicSecondOrderSystem::kinks_s and the step starts (MagnusGrid).
   std::vector<double> kinks;
@@ -102,6 +106,37 @@ inline constexpr double kProjectionWorkMargin = 4.0;
 /// is not null, *basis receives the automatic basis (computed for the decision anyway).
 FloquetMethod SelectFloquetMethod(const SystemModel& model, const FloquetOptions& options,
                                   MeshDrivenBasis* basis);
+
+/// @brief The method SelectFloquetMethod returns whatever the mesh frequency, or nullopt when
+/// kAuto decides by the frequency-dependent cost of a modal projection (model_floquet.cpp).
+std::optional<FloquetMethod> FrequencyIndependentMethod(const SystemModel& model,
+                                                        const FloquetOptions& options);
+
+/// @brief The model (projected on V if nonempty) as a generic system over the operator period
+/// with the forms `method` needs (steps, coefficients callback, Hill harmonics) at ω_m [rad/s].
+PeriodicSecondOrderSystem MakeModelSystem(const SystemModel& model, double omega_m,
+                                          FloquetMethod method, int hill_harmonics,
+                                          const MatrixX& V);
+
+/// @brief One block (or the whole model) of ComputeFloquet(model): the method selection, then
+/// the generic engine (model_floquet.cpp).
+FloquetResult ComputeModelFloquet(const SystemModel& model, const FloquetOptions& options);
+
+/// @brief ComputeFloquet(model)'s merge of the results of the decoupled DOF blocks
+/// (parts[b] of model.RestrictToBlock(b), every block): the union of the multipliers, the
+/// largest estimate, the summed counters, the combined verdict.
+FloquetResult CombineBlockResults(const SystemModel& model, const FloquetOptions& options,
+                                  const std::vector<FloquetResult>& parts);
+
+/// @brief ComputeFloquet(model)'s checks of the options and the model (throws InvalidInput);
+/// returns the model's warnings (slice cores linearized).
+std::vector<std::string> CheckFloquetModel(const SystemModel& model, const FloquetOptions& options);
+
+/// @brief ComputeFloquet(model)'s last step: the undamped-mode list of a marginal verdict, the
+/// warnings, P_K, T and the wall time since `start`.
+void FinishModelFloquet(const SystemModel& model, const FloquetOptions& options,
+                        const std::vector<std::string>& warnings,
+                        const std::chrono::steady_clock::time_point& start, FloquetResult* result);
 
 /// At most this many modes are searched for UndampedModes [-].
 inline constexpr int kMaxUndampedModesListed = 60;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <variant>
 #include <vector>
 
@@ -108,6 +109,8 @@ class ModelAssembler {
   MatrixX V_, VD_, K0r_, C0r_, K0D_, C0D_;
   std::vector<int> dofs_;
 };
+
+}  // namespace
 
 // The model (projected on V if nonempty) as a generic system with the forms the method needs,
 // over the operator period P_K (OperatorPeriodMeshes), not the hunting period of ε.
@@ -226,8 +229,6 @@ FloquetResult ComputeModelFloquet(const SystemModel& model, const FloquetOptions
   const StateSystem sys = MakeStateSystem(system, options.deflate_rigid_modes);
   return ComputeFloquetState(sys, options, method);
 }
-
-}  // namespace
 
 MeshDrivenBasis SelectMeshDrivenBasis(const SystemModel& model, double mesh_frequency_hz) {
   const int n = model.num_dofs();
@@ -354,33 +355,36 @@ FloquetMethod SelectFloquetMethod(const SystemModel& model, const FloquetOptions
   return SelectFloquetMethod(model, options, nullptr);
 }
 
-FloquetMethod SelectFloquetMethod(const SystemModel& model, const FloquetOptions& options,
-                                  MeshDrivenBasis* basis) {
-  const bool automatic_basis = options.num_modes == 0;
-  if (options.method != FloquetMethod::kAuto) {
-    if (options.method == FloquetMethod::kModalProjection && automatic_basis && basis != nullptr) {
-      *basis = SelectMeshDrivenBasis(model, options.mesh_frequency_hz);
-    }
-    return options.method;
-  }
+std::optional<FloquetMethod> FrequencyIndependentMethod(const SystemModel& model,
+                                                        const FloquetOptions& options) {
+  if (options.method != FloquetMethod::kAuto) return options.method;
   const int n = model.num_dofs();
-  if (n >= options.modal_projection_min_dofs) {
-    if (automatic_basis && basis != nullptr) {
-      *basis = SelectMeshDrivenBasis(model, options.mesh_frequency_hz);
-    }
-    return FloquetMethod::kModalProjection;
-  }
+  if (n >= options.modal_projection_min_dofs) return FloquetMethod::kModalProjection;
   // Piecewise-constant: the exact product (one expm per distinct step; no step count to choose).
   if (HasPiecewiseConstantOperator(model)) return FloquetMethod::kExactSteps;
   // Smooth coefficients: Magnus on the full system or on the mesh-driven modal basis, by cost
-  // (MagnusWork: steps ∝ the highest frequency kept, work ∝ steps × (2m)³). Only worth asking
-  // when the check basis ⌈2.25 m₀⌉ (m₀ ≥ min(12, n)) can be smaller than n.
-  // A user-sized basis (num_modes > 0) keeps the former rule below modal_projection_min_dofs:
-  // the full system (its fixed-size projection has no verdict-based acceptance).
+  // (SelectFloquetMethod). Only worth asking when the check basis ⌈2.25 m₀⌉ (m₀ ≥ min(12, n))
+  // can be smaller than n. A user-sized basis (num_modes > 0) keeps the former rule below
+  // modal_projection_min_dofs: the full system (its fixed-size projection has no verdict-based
+  // acceptance).
   const int m0_least = std::min(12, n);
-  if (!automatic_basis || NextBasisSize(NextBasisSize(m0_least, n), n) >= n) {
+  if (options.num_modes != 0 || NextBasisSize(NextBasisSize(m0_least, n), n) >= n) {
     return FloquetMethod::kMagnus;
   }
+  return std::nullopt;
+}
+
+FloquetMethod SelectFloquetMethod(const SystemModel& model, const FloquetOptions& options,
+                                  MeshDrivenBasis* basis) {
+  const bool automatic_basis = options.num_modes == 0;
+  if (const std::optional<FloquetMethod> fixed = FrequencyIndependentMethod(model, options)) {
+    if (*fixed == FloquetMethod::kModalProjection && automatic_basis && basis != nullptr) {
+      *basis = SelectMeshDrivenBasis(model, options.mesh_frequency_hz);
+    }
+    return *fixed;
+  }
+  // By cost (MagnusWork: steps ∝ the highest frequency kept, work ∝ steps × (2m)³).
+  const int n = model.num_dofs();
   MeshDrivenBasis b = SelectMeshDrivenBasis(model, options.mesh_frequency_hz);
   const int m = static_cast<int>(b.modes.cols());
   const int m0 = std::min(b.num_priority, m), m1 = NextBasisSize(m0, n), m2 = NextBasisSize(m1, n);
@@ -397,10 +401,71 @@ FloquetMethod SelectFloquetMethod(const SystemModel& model, const FloquetOptions
   return FloquetMethod::kModalProjection;
 }
 
-}  // namespace internal
+FloquetResult CombineBlockResults(const SystemModel& model, const FloquetOptions& options,
+                                  const std::vector<FloquetResult>& parts) {
+  // Blocks do not couple: Φ is block diagonal (after the DOF permutation) and the multipliers
+  // are the union of the blocks' multipliers.
+  const int n = model.num_dofs();
+  const int num_blocks = static_cast<int>(parts.size());
+  FloquetResult result;
+  int total = 0, largest = 0;
+  for (int b = 0; b < num_blocks; ++b) {
+    total += static_cast<int>(parts[b].multipliers.size());
+    if (model.blocks()[b].size() > model.blocks()[largest].size()) largest = b;
+  }
+  result.method_used = parts[largest].method_used;
+  result.multipliers.resize(total);
+  result.exponents.resize(total);
+  if (options.keep_monodromy) result.monodromy = MatrixX::Zero(2 * n, 2 * n);
+  int at = 0;
+  for (int b = 0; b < num_blocks; ++b) {
+    const FloquetResult& p = parts[b];
+    const int k = static_cast<int>(p.multipliers.size());
+    result.multipliers.segment(at, k) = p.multipliers;
+    result.exponents.segment(at, k) = p.exponents;
+    at += k;
+    result.summary.error_estimate =
+        MaxPropagatingNaN(result.summary.error_estimate, p.summary.error_estimate);
+    for (const auto& [name, value] : p.summary.counters) result.summary.counters[name] += value;
+    for (const std::string& w : p.summary.warnings) {
+      result.summary.warnings.push_back("block " + std::to_string(b) + ": " + w);
+    }
+    if (!p.summary.ok() && result.summary.ok()) {
+      result.summary.status = p.summary.status;
+      result.summary.message = "block " + std::to_string(b) + ": " + p.summary.message;
+    }
+    if (p.method_used != result.method_used) {
+      result.summary.warnings.push_back("block " + std::to_string(b) + " used method " +
+                                        ToString(p.method_used));
+    }
+    if (options.keep_monodromy && p.monodromy.size()) {
+      const std::vector<int>& dofs = model.blocks()[b];
+      const int nb = static_cast<int>(dofs.size());
+      for (int i = 0; i < 2 * nb; ++i) {
+        const int gi = i < nb ? dofs[i] : n + dofs[i - nb];
+        for (int j = 0; j < 2 * nb; ++j) {
+          const int gj = j < nb ? dofs[j] : n + dofs[j - nb];
+          result.monodromy(gi, gj) = p.monodromy(i, j);
+        }
+      }
+    }
+  }
+  result.summary.counters["blocks"] = num_blocks;
+  SortSpectrum(&result.multipliers, &result.exponents);
+  FinishResult(0, options.tolerance, &result);
+  // The blocks' own verdicts (each with its own status and estimate), combined.
+  result.verdict = parts[0].verdict;
+  bool marginal = parts[0].marginal;
+  for (int b = 1; b < num_blocks; ++b) {
+    result.verdict = CombineVerdicts(result.verdict, parts[b].verdict);
+    marginal = marginal || parts[b].marginal;
+  }
+  result.marginal = result.verdict == FloquetVerdict::kStable && marginal;
+  return result;
+}
 
-FloquetResult ComputeFloquet(const SystemModel& model, const FloquetOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+std::vector<std::string> CheckFloquetModel(const SystemModel& model,
+                                           const FloquetOptions& options) {
   std::string why;
   GEARDYN_THROW_UNLESS(options.IsValid(&why), why);
   GEARDYN_THROW_UNLESS(model.num_dofs() > 0, "model: has no DOF");
@@ -420,80 +485,41 @@ FloquetResult ComputeFloquet(const SystemModel& model, const FloquetOptions& opt
       options.method != FloquetMethod::kArpackMonodromy ||
           options.arpack_nev <= 2 * model.num_dofs(),
       "arpack_nev: must be <= 2n = " << 2 * model.num_dofs() << ", got " << options.arpack_nev);
+  return warnings;
+}
+
+void FinishModelFloquet(const SystemModel& model, const FloquetOptions& options,
+                        const std::vector<std::string>& warnings,
+                        const std::chrono::steady_clock::time_point& start, FloquetResult* result) {
+  if (result->marginal && options.list_undamped_modes) {
+    result->undamped_modes = UndampedModes(model);
+  }
+  for (const std::string& w : warnings) result->summary.warnings.push_back(w);
+  result->period_meshes = OperatorPeriodMeshes(model);
+  result->period_s = static_cast<double>(result->period_meshes) / options.mesh_frequency_hz;
+  if (result->period_meshes != model.period_meshes()) {
+    result->summary.counters["load_period_meshes"] = model.period_meshes();
+  }
+  result->summary.wall_time_s = SecondsSince(start);
+}
+
+}  // namespace internal
+
+FloquetResult ComputeFloquet(const SystemModel& model, const FloquetOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<std::string> warnings = internal::CheckFloquetModel(model, options);
   FloquetResult result;
   const int num_blocks = options.split_blocks ? model.num_blocks() : 1;
   if (num_blocks <= 1) {
     result = internal::ComputeModelFloquet(model, options);
   } else {
-    // Blocks do not couple: Φ is block diagonal (after the DOF permutation) and the multipliers
-    // are the union of the blocks' multipliers.
-    const int n = model.num_dofs();
     std::vector<FloquetResult> parts;
-    int total = 0, largest = 0;
     for (int b = 0; b < num_blocks; ++b) {
       parts.push_back(internal::ComputeModelFloquet(model.RestrictToBlock(b), options));
-      total += static_cast<int>(parts.back().multipliers.size());
-      if (model.blocks()[b].size() > model.blocks()[largest].size()) largest = b;
     }
-    result.method_used = parts[largest].method_used;
-    result.multipliers.resize(total);
-    result.exponents.resize(total);
-    if (options.keep_monodromy) result.monodromy = MatrixX::Zero(2 * n, 2 * n);
-    int at = 0;
-    for (int b = 0; b < num_blocks; ++b) {
-      const FloquetResult& p = parts[b];
-      const int k = static_cast<int>(p.multipliers.size());
-      result.multipliers.segment(at, k) = p.multipliers;
-      result.exponents.segment(at, k) = p.exponents;
-      at += k;
-      result.summary.error_estimate =
-          internal::MaxPropagatingNaN(result.summary.error_estimate, p.summary.error_estimate);
-      for (const auto& [name, value] : p.summary.counters) result.summary.counters[name] += value;
-      for (const std::string& w : p.summary.warnings) {
-        result.summary.warnings.push_back("block " + std::to_string(b) + ": " + w);
-      }
-      if (!p.summary.ok() && result.summary.ok()) {
-        result.summary.status = p.summary.status;
-        result.summary.message = "block " + std::to_string(b) + ": " + p.summary.message;
-      }
-      if (p.method_used != result.method_used) {
-        result.summary.warnings.push_back("block " + std::to_string(b) + " used method " +
-                                          ToString(p.method_used));
-      }
-      if (options.keep_monodromy && p.monodromy.size()) {
-        const std::vector<int>& dofs = model.blocks()[b];
-        const int nb = static_cast<int>(dofs.size());
-        for (int i = 0; i < 2 * nb; ++i) {
-          const int gi = i < nb ? dofs[i] : n + dofs[i - nb];
-          for (int j = 0; j < 2 * nb; ++j) {
-            const int gj = j < nb ? dofs[j] : n + dofs[j - nb];
-            result.monodromy(gi, gj) = p.monodromy(i, j);
-          }
-        }
-      }
-    }
-    result.summary.counters["blocks"] = num_blocks;
-    internal::SortSpectrum(&result.multipliers, &result.exponents);
-    internal::FinishResult(0, options.tolerance, &result);
-    // The blocks' own verdicts (each with its own status and estimate), combined.
-    result.verdict = parts[0].verdict;
-    bool marginal = parts[0].marginal;
-    for (int b = 1; b < num_blocks; ++b) {
-      result.verdict = internal::CombineVerdicts(result.verdict, parts[b].verdict);
-      marginal = marginal || parts[b].marginal;
-    }
-    result.marginal = result.verdict == FloquetVerdict::kStable && marginal;
+    result = internal::CombineBlockResults(model, options, parts);
   }
-  if (result.marginal && options.list_undamped_modes) {
-    result.undamped_modes = internal::UndampedModes(model);
-  }
-  for (const std::string& w : warnings) result.summary.warnings.push_back(w);
-  result.period_meshes = OperatorPeriodMeshes(model);
-  result.period_s = static_cast<double>(result.period_meshes) / options.mesh_frequency_hz;
-  if (result.period_meshes != model.period_meshes()) {
-    result.summary.counters["load_period_meshes"] = model.period_meshes();
-  }
-  result.summary.wall_time_s = internal::SecondsSince(start);
+  internal::FinishModelFloquet(model, options, warnings, start, &result);
   return result;
 }
 

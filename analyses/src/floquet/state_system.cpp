@@ -249,6 +249,7 @@ StateSystem MakeStateSystem(const PeriodicSecondOrderSystem& system, bool deflat
       out.sparse_step_matrices.push_back(std::move(S));
     }
   }
+  out.companion = true;  // both forms of evaluate below set [[0, ω_s I], [X, Y]]
   if (system.coefficients) {
     // make_state with the products into kept buffers (no allocation per call: Magnus evaluates
     // A(t) three times per step).

@@ -8,7 +8,8 @@
 // Arguments: x points, y points, threads (0 = all cores), settings (0: the defaults before issue
 // 13, Floquet tolerance 1e-10 and bisection to 1e-5 of the span; 2: the first issue-13 defaults,
 // 1e-6 with the 1e-10 verdict refinement and bisection to 1e-3; 1: the current defaults, as 2
-// with the measured-order Magnus step control for the 1e-6 screening run).
+// with the measured-order Magnus step control for the 1e-6 screening run and the prepared rows
+// (PreparedFloquet); 3: as 1 without the prepared rows, every point a ComputeFloquet).
 #include <benchmark/benchmark.h>
 
 #include "geardyn/stability_chart_runner.hpp"
@@ -26,7 +27,8 @@ void BM_ReadmeChart(benchmark::State& state) {
   const long settings = state.range(3);
   s.floquet.tolerance = settings != 0 ? 1e-6 : 1e-10;
   s.chart.boundary_tolerance = settings != 0 ? 1e-3 : 1e-5;
-  s.measured_order = settings == 1;
+  s.measured_order = settings == 1 || settings == 3;
+  s.prepare_rows = settings == 1;
   long evaluations = 0, regions = 0, unstable = 0;
   for (auto _ : state) {
     const app::SceneChart run = app::ComputeSceneStabilityChart(s);
@@ -46,6 +48,8 @@ void BM_ReadmeChart(benchmark::State& state) {
 BENCHMARK(BM_ReadmeChart)
     ->Args({80, 24, 0, 1})
     ->Args({80, 24, 1, 1})
+    ->Args({80, 24, 0, 3})
+    ->Args({80, 24, 1, 3})
     ->Args({80, 24, 0, 2})
     ->Args({80, 24, 1, 2})
     ->Args({80, 24, 0, 0})
