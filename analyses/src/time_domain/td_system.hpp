@@ -55,6 +55,8 @@ struct TdSystem {
   MatrixX damping0;     ///< (n×n) C0 [N·s/m, N·s, N·m·s]
   VectorX load0;        ///< (n) f0 with its unbalanced part removed (M-consistently) [N, N·m]
   MatrixX rigid_modes;  ///< (n × r) rigid-body modes of the mean stiffness (internal rows 0)
+  /// (n×n) mean stiffness with stand-in springs for nonlinear meshes (static starting guess)
+  MatrixX guess_stiffness;
   double unbalanced_fraction = 0.0;  ///< relative part of f0 along the rigid modes (removed)
   std::vector<TdMeshTerm> terms;     ///< one per mesh
   int num_switching = 0;             ///< total switching functions

@@ -5,6 +5,7 @@
 
 #include <omp.h>
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -143,7 +144,14 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
   const long samples = static_cast<long>(io.samples_per_period) * P;
   VectorX dte(num_meshes);
   std::vector<double> prev_rms(static_cast<std::size_t>(num_meshes), -1.0);
-  VectorX prev_x = x0, prev_v = v0;
+  // y − V (VᵀMV)⁻¹ VᵀM y: removes the rigid-body part of a state vector.
+  const MatrixX mv = sys.mass * sys.rigid_modes;
+  const MatrixX vmv_inv = (sys.rigid_modes.transpose() * mv).inverse();
+  const auto rigid_projector = [&](const VectorX& y) -> VectorX {
+    if (sys.rigid_modes.cols() == 0) return y;
+    return y - sys.rigid_modes * (vmv_inv * (mv.transpose() * y));
+  };
+  VectorX prev_x = rigid_projector(x0), prev_v = rigid_projector(v0);
   int consecutive = 0;
   bool steady = false;
   bool failed = false;
@@ -260,8 +268,10 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
     }
     out.periods = p + 1;
     // Period-to-period change of the state at the period start and of each mesh's DTE RMS.
-    const VectorX& x = stepper->x();
-    const VectorX& v = stepper->v();
+    // Rigid-body motion (a free rotation of the train) is not vibration: the change is measured
+    // in the M-orthogonal complement of the rigid modes.
+    const VectorX x = rigid_projector(stepper->x());
+    const VectorX v = rigid_projector(stepper->v());
     const double xn = x.lpNorm<Eigen::Infinity>(), vn = v.lpNorm<Eigen::Infinity>();
     double change = xn > 0.0 ? (x - prev_x).lpNorm<Eigen::Infinity>() / xn : 0.0;
     if (vn > 0.0) change = std::max(change, (v - prev_v).lpNorm<Eigen::Infinity>() / vn);
