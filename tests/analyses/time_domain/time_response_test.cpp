@@ -11,6 +11,8 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "../../../analyses/src/time_domain/td_steppers.hpp"
 #include "analyses/harmonic_balance/hb_fixtures.hpp"
@@ -171,6 +173,45 @@ TEST(TimeResponse, MaxPeriodsGivesNoVerdict) {
   EXPECT_EQ(r.steady, SteadyVerdict::kUndetermined);
   EXPECT_EQ(r.periods, 2);
   EXPECT_EQ(r.final_state.size(), 4);  // what was computed is kept
+}
+
+// Independent speeds in parallel: each equals the closed form (and so the serial runs).
+TEST(TimeResponse, SpeedsInParallelEqualTheClosedForm) {
+  const TorsionalCase c;
+  TimeResponseOptions o;
+  o.integration.integrator = TimeIntegrator::kRungeKutta;
+  o.integration.relative_tolerance = o.integration.absolute_tolerance = 1e-10;
+  o.steady.tolerance = 1e-9;
+  const std::vector<double> f = {1200.0, 2500.0, 4000.0, 6000.0, 9000.0};
+  int calls = 0;
+  const std::vector<TimeResponse> r =
+      SimulateSpeeds(c.Model(), f, o, 2, [&](double, const std::string&) { ++calls; });
+  ASSERT_EQ(r.size(), f.size());
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    ASSERT_TRUE(r[i].summary.ok()) << r[i].summary.BriefReport();
+    EXPECT_EQ(r[i].mesh_frequency_hz, f[i]);
+    EXPECT_NEAR(r[i].meshes[0].rms_dte, c.Rms(f[i]), 1e-6 * c.Rms(f[i])) << f[i];
+  }
+  EXPECT_GE(calls, 1);
+}
+
+// kAuto's rule with the closed-form highest frequency ω_n = √(k/m_e) of the torsional pair (the
+// rigid mode has ω = 0): explicit when ω_n·T_m/S < limit, implicit above.
+TEST(TimeResponse, AutoPicksByStiffness) {
+  const TorsionalCase c;
+  const double wn = std::sqrt(c.p.k / c.MeanMass());
+  TimeResponseOptions o;
+  o.integration.samples_per_period = 16;
+  o.integration.auto_stiffness_limit = 2.0;
+  o.steady.max_periods = 3;
+  o.steady.tolerance = 1e-2;
+  // ω_n T/S = 2π ω_n /(S ω_m): f_m giving the ratio 0.5·limit and 2·limit.
+  const double f_explicit = wn / (16.0 * 0.5 * 2.0);
+  const double f_implicit = wn / (16.0 * 2.0 * 2.0);
+  const TimeResponse a = SimulateSteadyState(c.Model(), f_explicit, o);
+  const TimeResponse b = SimulateSteadyState(c.Model(), f_implicit, o);
+  EXPECT_EQ(a.integrator_used, TimeIntegrator::kRungeKutta);
+  EXPECT_EQ(b.integrator_used, TimeIntegrator::kGeneralizedAlpha);
 }
 
 }  // namespace
