@@ -253,6 +253,7 @@ TdWorkspace::TdWorkspace(const TdSystem& sys) {
   const std::size_t meshes = sys.terms.size();
   force_eta.assign(meshes, 0.0);
   contacts.assign(meshes, -1);
+  mesh_tangent.assign(meshes, Matrix2::Zero());
   core_ws.resize(meshes);
   core_out.resize(meshes);
   core_x.resize(meshes);
@@ -407,6 +408,7 @@ void EvalForces(const TdSystem& sys, TdWorkspace& ws, double theta, double theta
     }
     ws.mesh_dissipation += rate.dot(C2 * rate);
     ws.force_eta[k] = F(0);
+    if (with_jacobians) ws.mesh_tangent[k] = J;
     // Force on the pair's coordinates −Gᵀ F; tangents Gᵀ J G and Gᵀ C2 G.
     const Vector12 fp = -t.G.transpose() * F;
     Matrix12 kp, cp;
@@ -493,7 +495,7 @@ bool SolveBordered(const MatrixX& A, const MatrixX& mv, const VectorX& b, Vector
 
 }  // namespace
 
-TdStatic SolveStatic(const TdSystem& sys, TdWorkspace& ws, double theta0) {
+TdStatic SolveStatic(const TdSystem& sys, TdWorkspace& ws, double theta0, const VectorX* start) {
   TdStatic out;
   out.x = VectorX::Zero(sys.n);
   const VectorX zero = VectorX::Zero(sys.n);
@@ -508,7 +510,11 @@ TdStatic SolveStatic(const TdSystem& sys, TdWorkspace& ws, double theta0) {
         ws.tangent_k.block(t.internal_offset, t.internal_offset, t.num_internal, t.num_internal);
   }
   VectorX x_guess;
-  if (SolveBordered(guess, mv, ws.force, &x_guess)) out.x = x_guess;
+  if (start != nullptr) {
+    out.x = *start;
+  } else if (SolveBordered(guess, mv, ws.force, &x_guess)) {
+    out.x = x_guess;
+  }
   // Newton on force(x, 0, θ₀) = 0, dx = K_t⁻¹ force, bordered by VᵀM dx = 0 on the rigid modes
   // (the rigid coordinates stay where they are: the solution is unique in the complement).
   EvalForces(sys, ws, theta0, 0.0, out.x, zero, true);

@@ -163,5 +163,24 @@ TEST(NonlinearCoreTime, CompliantToothSteadyStateEqualsClosedForm) {
   }
 }
 
+// Slow roll: the tooth and contact springs in series carry T/r1, so the loaded TE is
+// δ = ε(θ) + (T/r1)(1/k_c + 1/k_b) and the condensed tangent along η is k_c k_b/(k_c + k_b).
+TEST(NonlinearCoreTime, QuasiStaticCompliantToothEqualsClosedForm) {
+  const ToothParams tp;
+  const double torque = 100.0;
+  QuasiStaticOptions o;
+  o.samples_per_mesh = 8;
+  const QuasiStaticResult r = SimulateQuasiStatic(ToothPair(tp, torque), o);
+  ASSERT_TRUE(r.summary.ok()) << r.summary.BriefReport();
+  const QuasiStaticMesh& m = r.meshes.at(0);
+  const double series = tp.k_c * tp.k_b / (tp.k_c + tp.k_b);
+  for (Eigen::Index s = 0; s < r.theta.size(); ++s) {
+    const double te = tp.e1 * std::cos(r.theta(s)) + torque / tp.r1 / series;
+    EXPECT_NEAR(m.loaded_te(s), te, 1e-9 * te);
+    EXPECT_NEAR(m.stiffness(0, s), series, 1e-9 * series);
+    EXPECT_NEAR(m.stiffness(1, s), 0.0, 1e-9 * series * 0.01);
+  }
+}
+
 }  // namespace
 }  // namespace geardyn

@@ -18,6 +18,7 @@
 #include "analyses/harmonic_balance/hb_fixtures.hpp"
 #include "geardyn/common/errors.hpp"
 #include "lib/system/hand_pair.hpp"
+#include "lib/system/periodic_fixture.hpp"
 
 namespace geardyn {
 namespace {
@@ -212,6 +213,34 @@ TEST(TimeResponse, AutoPicksByStiffness) {
   const TimeResponse b = SimulateSteadyState(c.Model(), f_implicit, o);
   EXPECT_EQ(a.integrator_used, TimeIntegrator::kRungeKutta);
   EXPECT_EQ(b.integrator_used, TimeIntegrator::kGeneralizedAlpha);
+}
+
+// Slow roll of an LTV pair: K(θ)(δ − ε(θ)) = T/r1 gives the loaded TE δ = ε + T/(r1 K(θ)), and
+// the tangent channels are the core's K, K·h, K·μb² of periodic_fixture.hpp's closed form.
+TEST(TimeResponse, QuasiStaticLtvPairEqualsClosedForm) {
+  const TorsionalCase c;
+  const double a = 0.2;
+  const LinearMeshCore core(MeshCoreLevel::kBlankenshipSingh,
+                            Coefficient(test::SmoothStiffness(c.p.k, a, 0.0, c.p.b)), c.p.b,
+                            Coefficient(test::SmoothTransmissionError(c.e1, 0.0, 0.0)));
+  QuasiStaticOptions o;
+  o.samples_per_mesh = 16;
+  const QuasiStaticResult r = SimulateQuasiStatic(test::TorsionalPair(core, c.torque), o);
+  ASSERT_TRUE(r.summary.ok()) << r.summary.BriefReport();
+  ASSERT_EQ(r.theta.size(), 16);
+  const QuasiStaticMesh& m = r.meshes.at(0);
+  const double b2 = c.p.b * c.p.b / 3.0;
+  for (Eigen::Index s = 0; s < r.theta.size(); ++s) {
+    const double th = r.theta(s);
+    const double k = c.p.k * (1.0 + a * std::cos(th));
+    const double te = c.e1 * std::cos(th) + c.torque / (c.p.r1 * k);
+    EXPECT_NEAR(m.loaded_te(s), te, 1e-10 * te) << th;
+    EXPECT_NEAR(m.dte(s), te - c.e1 * std::cos(th), 1e-9 * te) << th;
+    EXPECT_NEAR(m.force(s), c.torque / c.p.r1, 1e-8 * c.torque / c.p.r1) << th;
+    EXPECT_NEAR(m.stiffness(0, s), k, 1e-12 * k);
+    EXPECT_NEAR(m.stiffness(1, s), 0.02 * c.p.k * c.p.b * std::cos(th), 1e-9 * c.p.k * c.p.b);
+    EXPECT_NEAR(m.stiffness(2, s), c.p.k * b2 * (1.0 + 0.05 * std::sin(th)), 1e-9 * c.p.k * b2);
+  }
 }
 
 }  // namespace
