@@ -4,6 +4,7 @@
 /// Xie (1991), e = (β − 1/6) h² (a_{n+1} − a_n); the energy quadrature by the trapezoidal rule on
 /// the step ends.
 #include <Eigen/LU>
+#include <Eigen/SparseLU>
 #include <limits>
 
 #include "td_steppers.hpp"
@@ -55,8 +56,19 @@ class AlphaStepper final : public TdStepper {
       const MatrixX jac =
           (1.0 - alpha_m_) * sys_.mass +
           (1.0 - alpha_f_) * (beta_ * h * h * ws_.tangent_k + gamma_ * h * ws_.tangent_c);
-      const Eigen::PartialPivLU<MatrixX> lu(jac);
-      const VectorX da = lu.solve(residual);
+      VectorX da;
+      if (sys_.n >= options_.sparse_threshold) {
+        // Large systems: the iteration matrix is sparse (bodies couple through elements and
+        // meshes only); SparseLU instead of the O(n³) dense LU.
+        const SparseMatrix sparse = jac.sparseView();
+        Eigen::SparseLU<SparseMatrix> lu;
+        lu.compute(sparse);
+        if (lu.info() != Eigen::Success) return kInf;
+        da = lu.solve(residual);
+      } else {
+        const Eigen::PartialPivLU<MatrixX> lu(jac);
+        da = lu.solve(residual);
+      }
       if (!da.allFinite()) return kInf;
       a1 -= da;
       // Newton update in the units of the local error tolerance.

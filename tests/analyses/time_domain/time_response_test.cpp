@@ -53,9 +53,11 @@ struct TorsionalCase {
   }
 };
 
-void CheckSteadyState(TimeIntegrator method, double f_m, double rel_tol, double tol) {
+void CheckSteadyState(TimeIntegrator method, double f_m, double rel_tol, double tol,
+                      int sparse_threshold = kSparseStateThreshold) {
   const TorsionalCase c;
   TimeResponseOptions o;
+  o.integration.sparse_threshold = sparse_threshold;
   o.integration.integrator = method;
   o.integration.relative_tolerance = rel_tol;
   o.integration.absolute_tolerance = rel_tol;
@@ -174,6 +176,11 @@ TEST(TimeResponse, MaxPeriodsGivesNoVerdict) {
   EXPECT_EQ(r.steady, SteadyVerdict::kUndetermined);
   EXPECT_EQ(r.periods, 2);
   EXPECT_EQ(r.final_state.size(), 4);  // what was computed is kept
+}
+
+// The sparse factorization of generalized-α's iteration matrix gives the same closed form.
+TEST(TimeResponse, TorsionalPairSteadyStateGeneralizedAlphaSparse) {
+  CheckSteadyState(TimeIntegrator::kGeneralizedAlpha, 4500.0, 1e-9, 1e-4, /*sparse_threshold=*/1);
 }
 
 // Independent speeds in parallel: each equals the closed form (and so the serial runs).

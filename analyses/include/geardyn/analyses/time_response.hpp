@@ -95,6 +95,9 @@ struct TimeIntegrationOptions {
   /// Keep every `channel_decimation`-th sample of the cores' channel histories, in [1, 65536].
   int channel_decimation = 1;
   bool record_element_forces = true;  ///< per-element force histories
+  /// Coordinates (system DOF + internal) from which generalized-α factors its iteration matrix
+  /// with Eigen's SparseLU instead of a dense LU, in [1, 1e7].
+  int sparse_threshold = kSparseStateThreshold;
   /// False (with the field, value and bound in `why`) on an invalid value.
   bool IsValid(std::string* why) const;
 };
@@ -115,7 +118,8 @@ struct SteadyStateOptions {
   bool IsValid(std::string* why) const;
 };
 
-/// Three-valued steady-state verdict: kUndetermined whenever the run failed.
+/// Three-valued steady-state verdict: kUndetermined whenever the run failed or ended without
+/// meeting the criterion (status kNotConverged); kNotSteady is reserved (not produced yet).
 enum class SteadyVerdict { kSteady, kNotSteady, kUndetermined };
 /// "steady", "not_steady", "undetermined".
 const char* ToString(SteadyVerdict verdict);
