@@ -462,13 +462,20 @@ TimeSweep SimulateSweep(const SystemModel& model, const std::vector<double>& fre
       }
       if (!r.summary.ok()) {
         sweep.summary.status = Worse(sweep.summary.status, r.summary.status);
-        sweep.summary.warnings.push_back(std::string(ToString(branch)) + " branch stopped at " +
-                                         std::to_string(f) + " Hz: " + r.summary.message);
         if (sweep.summary.message.empty()) sweep.summary.message = r.summary.message;
-        carried.resize(0);  // the next branch starts afresh
-        carried_phase = options.response.initial_phase;
         if (r.summary.message == "cancelled") return sweep;
-        break;
+        // Not steady within max_periods: the point is kept without a verdict and the sweep goes
+        // on from its last state (a quasi-periodic or slowly settling response is still the
+        // branch). A numerical failure ends the branch.
+        const bool fatal = r.summary.status == Status::kNumericalIssue || r.final_state.size() == 0;
+        sweep.summary.warnings.push_back(std::string(ToString(branch)) + " branch " +
+                                         (fatal ? "stopped" : "not steady") + " at " +
+                                         std::to_string(f) + " Hz: " + r.summary.message);
+        if (fatal) {
+          carried.resize(0);  // the next branch starts afresh
+          carried_phase = options.response.initial_phase;
+          break;
+        }
       }
       carried = r.final_state;
       carried_phase = r.final_phase;

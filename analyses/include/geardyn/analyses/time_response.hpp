@@ -226,8 +226,10 @@ struct TimeSweepOptions {
 };
 
 /// @brief Result of a stepped sweep: the points of the up branch (increasing f) then of the down
-/// branch (decreasing f); the run stops at the first failed point of a branch (kept, with its
-/// status) and goes on with the other branch.
+/// branch (decreasing f). A point that is not steady within max_periods is kept with its status
+/// (kNotConverged, verdict kUndetermined) and the branch goes on from its last state; a numerical
+/// failure ends its branch (the point kept, with its status) and the other branch starts afresh;
+/// cancellation ends the sweep. The summary has the worst status and one warning per such point.
 struct TimeSweep {
   std::vector<TimeSweepPoint> points;
   Summary summary;  ///< worst status of the points; counters: steps, events, points
