@@ -33,7 +33,7 @@
 /// linear/slice cores the damper power and the phase power ∂E_k/∂θ·θ̇), integrated with the
 /// solution (two extra ODE states on the Runge–Kutta path; on the generalized-α path the rule on
 /// the nodes 0, α-point, 1 exact for quadratics). Relative error |W − ΔS − D| / max(|W|, D, |ΔS|,
-/// 1e-12·|S|). It measures the integration error: ≲ 1e-9 for rk8pd, O(tol^{2/3}) for
+/// 1e-9·|S|). It measures the integration error: ≲ 1e-9 for rk8pd, O(tol^{2/3}) for
 /// generalized-α (its numerical damping included for ρ∞ < 1); a summary warning above 1e-4.
 ///
 /// **Quasi-static run** (SimulateQuasiStatic): the static equilibrium at every θ sample with the
@@ -111,8 +111,11 @@ struct TimeIntegrationOptions {
 };
 
 /// @brief Steady-state detection: the response is steady when, for `consecutive_periods`
-/// periods in a row, the change of the state at the period start (‖Δx‖/‖x‖ + ‖Δv‖/‖v‖, scaled)
-/// and of the DTE RMS of every mesh from one period to the next is below `tolerance`.
+/// periods in a row, the change from one period to the next of the state at the period start
+/// (max-norm, rigid-body motion projected out: ‖Δx‖/‖x‖ and ‖Δv‖/max(‖v‖, ω_m‖x‖)) and of the
+/// DTE RMS of every mesh (relative to max(RMS, 1e-6·|mean DTE|)) is below `tolerance`. A
+/// response whose max |DTE| grows beyond 1e4 × its first period's ends the run (kNotConverged,
+/// "grows without bound").
 struct SteadyStateOptions {
   double tolerance = 1e-6;      ///< relative period-to-period change [-], in [1e-14, 1]
   int consecutive_periods = 3;  ///< k, in [1, 1000]
