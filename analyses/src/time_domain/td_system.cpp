@@ -369,7 +369,9 @@ void EvalForces(const TdSystem& sys, TdWorkspace& ws, double theta, double theta
       // F = K2(δ − ε) + C2 δ̇ (B–S Eq. 39); E = ½ eᵀK2e; P = ∂E/∂θ_k θ̇_k at fixed δ.
       const LinearMeshCore& core = *t.linear;
       J = EvalStiffnessCore(core, th);
-      C2 = EvalDampingCore(core, th, t.damping_coefficient);
+      // C2 = (c_m/K) K2 (B–S Eq. 39), as EvalDampingCore, from the K2 just evaluated (one
+      // coefficient evaluation less per force evaluation).
+      C2 = J(0, 0) > 0.0 ? Matrix2((t.damping_coefficient / J(0, 0)) * J) : Matrix2::Zero();
       const Vector2 e = delta - EvalTransmissionError(core, th);
       F = J * e + C2 * rate;
       ws.mesh_energy += 0.5 * e.dot(J * e);
