@@ -100,9 +100,16 @@ ContactMeshCore::ContactMeshCore(const GearPairGeometry& pair, const MeshFrame& 
   GEARDYN_THROW_UNLESS(spur_ || def.friction_coefficient == 0.0,
                        "def.friction_coefficient: friction needs a spur pair in this build, got "
                            << def.friction_coefficient << " on a helical pair");
-  GEARDYN_THROW_UNLESS(def.profile == ContactProfile::kInvolute,
-                       "def.profile: \"biarc\" flanks are not available in this build (the exact "
-                       "involute is); use profile = \"involute\"");
+  GEARDYN_THROW_UNLESS(spur_ || def.profile == ContactProfile::kInvolute,
+                       "def.profile: \"biarc\" flanks need a spur pair in this build (use "
+                       "profile = \"involute\" for a helical pair)");
+  if (def.profile == ContactProfile::kBiarc) {
+    GEARDYN_THROW_UNLESS(def.arcs >= 1 && def.arcs <= 1000,
+                         "def.arcs: " << def.arcs << " must lie in [1, 1000]");
+    for (const ToothFlankGeometry* g : {&kinematics_.pinion(), &kinematics_.gear()}) {
+      for (const int eps : {-1, 1}) biarcs_.emplace_back(*g, eps, def.arcs);
+    }
+  }
   GEARDYN_THROW_UNLESS(def.friction_speed > 0.0,
                        "def.friction_speed: must be > 0, got " << def.friction_speed);
   const GearGeometry* members[2] = {&pair.pinion, &pair.gear};
@@ -233,6 +240,13 @@ bool ContactMeshCore::EvalContact(const Eigen::Ref<const VectorX>& x,
     }
   }
   if (!t.found || !t.valid) return false;
+  if (!biarcs_.empty()) {  // Kim's biarcs near the exact contact's rolls (contact_mesh_core.hpp)
+    const int f = eps > 0 ? 1 : 0;
+    const double ra = t.corner == 1 ? flank[0].roll_max : t.roll1;
+    const double rb = t.corner == 2 ? flank[1].roll_max : t.roll2;
+    t = CalcBiarcContactNear(biarcs_[f], flank[0], ra, biarcs_[2 + f], flank[1], rb);
+    if (!t.found || !t.valid) return false;
+  }
   // δ = δ_t − e(ρ1, ρ2, y) (spur: cos β_b = 1) and its pose gradient.
   PoseGradient grad = t.d_penetration;
   double e = 0.0;

@@ -4,9 +4,12 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
+#include <utility>
 #include <vector>
 
 #include "geardyn/common/errors.hpp"
+#include "geardyn/models/contact/tip_corner_contact.hpp"
 #include "support/contact_pairs.hpp"
 #include "support/expect_throws.hpp"
 
@@ -82,6 +85,108 @@ TEST(BiarcFlankTest, ContactWithinTheDeviationOfTheExactOne) {
     }
     EXPECT_GT(checked, 20);  // rolls outside the gear's flank are skipped
   }
+}
+
+// Two flanks of the rig placed near contact, with a random misalignment so the contact leaves the
+// line of action; rho1 beyond ρ_t drives the pinion's tip corner into the gear's flank.
+struct PlacedFlanks {
+  InvoluteFlankPose a, b;
+};
+PlacedFlanks Place(const ToothFlankGeometry& ga, const ToothFlankGeometry& gb, double rho1,
+                   double delta0, double tilt) {
+  const double r1 = ga.base_radius, r2 = gb.base_radius, c = 0.150;
+  const double alpha = std::acos((r1 + r2) / c), length = std::sqrt(c * c - (r1 + r2) * (r1 + r2));
+  PlacedFlanks p{MakeFlankPose(ga, Vector2::Zero(), 0.0, -1),
+                 MakeFlankPose(gb, Vector2(c, 0.0), 0.0, -1)};
+  p.a.base_angle = -alpha + rho1 / r1 + tilt;
+  p.b.base_angle = -alpha + kPi + (length - rho1 + delta0) / r2;
+  return p;
+}
+
+// The rolls the contact core passes to the lookup: the exact kernel's, or ρ_t and the corner
+// kernel's mate roll beyond a flank's end (contact_mesh_core.cpp).
+std::pair<double, double> LookupRolls(const PlacedFlanks& p, const ToothFlankGeometry& ga,
+                                      const ToothFlankGeometry& gb) {
+  const FlankContact t = CalcInvoluteContact(p.a, p.b);
+  if (t.roll1 > p.a.roll_max) {
+    return {p.a.roll_max, CalcTipCornerContact(p.a, ga.tip_corner_radius, p.b).roll2};
+  }
+  if (t.roll2 > p.b.roll_max) {
+    return {CalcTipCornerContact(p.b, gb.tip_corner_radius, p.a).roll2, p.b.roll_max};
+  }
+  return {t.roll1, t.roll2};
+}
+
+// The O(1) lookup finds the same contact as the all-pairs search (the reference), flank–flank and
+// tip corners (sharp and rounded), for coarse and fine fits: identical δ, corner flag and gradient.
+TEST(BiarcFlankTest, LookupNearTheRollsEqualsTheAllPairsSearch) {
+  const auto s = test::MakeContactPair(test::KimRigPair());
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (const double rho_a : {0.0, 0.3e-3}) {
+    ToothFlankGeometry ga = s.pinion, gb = s.gear;
+    ga.tip_corner_radius = gb.tip_corner_radius = rho_a;
+    for (const int n : {1, 2, 4, 16}) {
+      const BiarcFlank a(ga, -1, n), b(gb, -1, n);
+      int compared = 0, corners = 0;
+      for (int k = 0; k < 400; ++k) {
+        const double rho1 = ga.form_roll() + (ga.tip_roll() + 1e-3 - ga.form_roll()) * u(rng);
+        const PlacedFlanks p = Place(ga, gb, rho1, 2e-5 * (u(rng) - 0.3), 2e-4 * (u(rng) - 0.5));
+        const auto [ra, rb] = LookupRolls(p, ga, gb);
+        const FlankContact all = CalcBiarcContact(a, p.a, b, p.b);
+        const FlankContact near = CalcBiarcContactNear(a, p.a, ra, b, p.b, rb);
+        ASSERT_EQ(near.found, all.found) << "N " << n << " k " << k;
+        if (!all.found) continue;
+        ++compared;
+        corners += all.corner != 0;
+        EXPECT_EQ(near.corner, all.corner);
+        EXPECT_EQ(near.penetration, all.penetration) << "N " << n << " k " << k;
+        EXPECT_EQ(near.d_penetration, all.d_penetration);
+      }
+      EXPECT_GT(compared, 250) << "N " << n;
+      EXPECT_GT(corners, 10) << "N " << n << " rho_a " << rho_a;
+    }
+  }
+}
+
+// Every gradient of the lookup's contact (δ, both rolls, the point) against central differences of
+// the poses, on flank–flank and tip-corner contacts.
+TEST(BiarcFlankTest, GradientsMatchFiniteDifferences) {
+  const auto s = test::MakeContactPair(test::KimRigPair());
+  ToothFlankGeometry ga = s.pinion, gb = s.gear;
+  ga.tip_corner_radius = gb.tip_corner_radius = 0.2e-3;
+  const BiarcFlank a(ga, -1, 5), b(gb, -1, 5);
+  int corners = 0, flanks = 0;
+  for (const double frac : {0.1, 0.35, 0.62, 0.9, 0.998, 1.02}) {
+    const double rho1 = ga.form_roll() + (ga.tip_roll() - ga.form_roll()) * frac;
+    const PlacedFlanks p = Place(ga, gb, rho1, 4e-6, 3e-5);
+    const auto [ra, rb] = LookupRolls(p, ga, gb);
+    const FlankContact c = CalcBiarcContactNear(a, p.a, ra, b, p.b, rb);
+    ASSERT_TRUE(c.found) << frac;
+    (c.corner ? corners : flanks)++;
+    for (int i = 0; i < 6; ++i) {
+      const double h = i % 3 == 2 ? 1e-9 : 1e-10;
+      auto eval = [&](double step) {
+        PlacedFlanks q = p;
+        double* v[6] = {&q.a.center.x(), &q.a.center.y(), &q.a.base_angle,
+                        &q.b.center.x(), &q.b.center.y(), &q.b.base_angle};
+        *v[i] += step;
+        return CalcBiarcContactNear(a, q.a, ra, b, q.b, rb);
+      };
+      const FlankContact cp = eval(h), cm = eval(-h);
+      ASSERT_EQ(cp.corner, c.corner);
+      ASSERT_EQ(cm.corner, c.corner);
+      const double tol = i % 3 == 2 ? 1e-7 : 1e-5;  // per rad: lengths of ≈ 0.1 m
+      EXPECT_NEAR((cp.penetration - cm.penetration) / (2 * h), c.d_penetration(i), tol) << i;
+      EXPECT_NEAR((cp.roll1 - cm.roll1) / (2 * h), c.d_roll1(i), 1e3 * tol) << frac << " " << i;
+      EXPECT_NEAR((cp.roll2 - cm.roll2) / (2 * h), c.d_roll2(i), 1e3 * tol) << frac << " " << i;
+      const Vector2 dp = (cp.point - cm.point) / (2 * h);
+      EXPECT_NEAR(dp.x(), c.d_point(0, i), 1e3 * tol) << frac << " " << i;
+      EXPECT_NEAR(dp.y(), c.d_point(1, i), 1e3 * tol) << frac << " " << i;
+    }
+  }
+  EXPECT_GT(corners, 0);
+  EXPECT_GT(flanks, 0);
 }
 
 TEST(BiarcFlankTest, RejectsBadInput) {

@@ -16,12 +16,22 @@
 ///
 /// **Contact.** Convex arcs (A: centre C_A, radius r_A; B likewise) touch along C_A C_B:
 /// δ = r_A + r_B − |C_B − C_A|, normal n = (C_B − C_A)/|C_B − C_A| (the force direction on B),
-/// valid when the touching points lie within both arcs' spans. A sharp tip corner (the last arc's
-/// end, point Q) against an arc of the mate: δ = r_B − |Q − C_B|. The largest δ over the valid
-/// candidates is returned (all arcs are tried: O(N²), the price of the approximation).
-/// Derivatives: ∂δ/∂c_A = −∂δ/∂c_B = ... = n (arc centres move rigidly with their flank pose:
-/// ∂C/∂β = J(C − c)); roll1/roll2 are the involute rolls √(|P − c|² − r_b²) of the touching points
-/// (for relief lookups), their derivatives are not provided (zero), nor is d_point.
+/// valid when the touching points lie within both arcs' spans and |δ| ≤ max_depth. The tip corner
+/// is one more arc of each flank: the corner circle (centre Q, radius ρ_a ≥ 0; tip_corner_contact
+/// .hpp) spanning the directions from the flank normal at ρ_t to the tip radial of Q, so a sharp
+/// corner (ρ_a = 0) is the point Q. The largest valid δ is returned.
+///
+/// **Lookup.** CalcBiarcContact tries all arc pairs (O(N²)); it is the reference.
+/// CalcBiarcContactNear tries only the arcs around given roll distances (the arc of a roll is found
+/// in O(1): equal roll segments, one junction roll each) and their neighbours, plus the corners
+/// when the last arc is among them: O(1). The core passes the exact kernel's rolls, which lie
+/// within O(h²) of the biarc contact's (tested equal to the all-pairs result).
+///
+/// **Derivatives** (closed form, pose order (c1, β1, c2, β2)): arc centres move rigidly with their
+/// flank pose, ∂C/∂(c, β) = [I, J(C − c)]; ∂δ = n·∂C_A − n·∂C_B; ∂n = (I − nnᵀ)(∂C_B − ∂C_A)/|d|;
+/// P1 = C_A + r_A n, P2 = C_B − r_B n; roll1/roll2 are the involute rolls √(|P − c|² − r_b²) of the
+/// touching points (for relief lookups; ρ_t on a corner, as the exact corner kernel reports), with
+/// ∂ρ = (P − c)·(∂P − ∂c)/ρ; d_point = ½(∂P1 + ∂P2).
 #pragma once
 
 #include <vector>
@@ -55,10 +65,17 @@ class BiarcFlank {
   double max_deviation() const { return max_deviation_; }
   /// Base radius r_b [m].
   double base_radius() const { return base_radius_; }
+  /// The tip corner as an arc (canonical frame): centre Q, radius ρ_a ≥ 0, from the flank normal at
+  /// ρ_t to the tip radial direction of Q.
+  const FlankArc& corner() const { return corner_; }
+  /// Index of the arc holding the flank point of roll distance ρ [m] (clamped to the flank), O(1).
+  int ArcIndex(double roll) const;
 
  private:
   std::vector<FlankArc> arcs_;
-  double max_deviation_ = 0.0, base_radius_ = 0.0;
+  std::vector<double> junction_roll_;  // involute roll of each biarc's junction [m]
+  FlankArc corner_;
+  double max_deviation_ = 0.0, base_radius_ = 0.0, form_roll_ = 0.0, segment_ = 0.0;
 };
 
 /// @brief Contact of two biarc flanks placed at the poses of their exact flanks (the @file).
@@ -66,5 +83,14 @@ class BiarcFlank {
 /// @param[in] b, pose_b flank of body 2.
 FlankContact CalcBiarcContact(const BiarcFlank& a, const InvoluteFlankPose& pose_a,
                               const BiarcFlank& b, const InvoluteFlankPose& pose_b);
+
+/// @brief The same contact searched only near given roll distances (the @file's lookup): the arcs
+/// of roll_a on a and roll_b on b and their neighbours (3 × 3 pairs), and the corners when a last
+/// arc is among them. Never allocates, O(1) in N.
+/// @param[in] roll_a, roll_b roll distances [m] near the contact on each flank (e.g. the exact
+///   kernel's ρ1, ρ2; ρ_t for a tip corner).
+FlankContact CalcBiarcContactNear(const BiarcFlank& a, const InvoluteFlankPose& pose_a,
+                                  double roll_a, const BiarcFlank& b,
+                                  const InvoluteFlankPose& pose_b, double roll_b);
 
 }  // namespace geardyn

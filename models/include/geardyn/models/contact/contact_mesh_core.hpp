@@ -38,8 +38,17 @@
 /// larger force wins); per tooth of each member its coordinates (rotation [rad], radial and
 /// tangential [m]).
 ///
-/// **Scope of this build.** Flexible teeth and friction need a spur pair (the helical chain of
-/// mesh_kinematics.hpp is used for rigid, frictionless teeth only); external pairs only.
+/// **Biarc profile** (def.profile = "biarc", spur pairs, every tooth type): each flank is replaced
+/// by Kim's N biarcs (biarc_profile.hpp) placed at the exact flank's (deflected) pose. The exact
+/// kernel's rolls (involute, or tip corner beyond ρ_t) locate the arcs in O(1); the biarc contact
+/// of those arcs and their neighbours (CalcBiarcContactNear) then gives δ, n, the point and the
+/// rolls with closed-form pose gradients, through the same chain rule. The line law keeps the
+/// involute rolls of the touching points as radii of curvature (the arcs' radii are an artefact of
+/// the fit, within O(h) of them).
+///
+/// **Scope of this build.** Flexible teeth, friction and the biarc profile need a spur pair (the
+/// helical chain of mesh_kinematics.hpp is used for rigid, frictionless, exact teeth only);
+/// external pairs only.
 #pragma once
 
 #include <memory>
@@ -47,6 +56,7 @@
 #include <string>
 #include <vector>
 
+#include "geardyn/models/contact/biarc_profile.hpp"
 #include "geardyn/models/contact/contact_mesh_def.hpp"
 #include "geardyn/models/contact/flank_relief.hpp"
 #include "geardyn/models/contact/mesh_kinematics.hpp"
@@ -63,7 +73,8 @@ class ContactMeshCore final : public NonlinearMeshCore {
   /// @param[in] def the [mesh.contact] settings.
   /// @param[in] modifications the drive flanks' modifications (none: unmodified).
   /// @throws InvalidInput naming `def.teeth` or `def.friction_coefficient` on a helical pair,
-  ///   `def.profile` for "biarc" (not in this build), `def.law` (invalid), or as the geometry.
+  ///   `def.profile` ("biarc" on a helical pair), `def.arcs` (outside [1, 1000]), `def.law`
+  ///   (invalid), or as the geometry.
   ContactMeshCore(const GearPairGeometry& pair, const MeshFrame& frame, const ContactMeshDef& def,
                   const ToothModifications& modifications = {});
 
@@ -109,6 +120,8 @@ class ContactMeshCore final : public NonlinearMeshCore {
   int num_internal_ = 0;
   std::int64_t period_ = 1;
   bool spur_ = true;
+  /// Biarc flanks (profile = "biarc"): [member][ε = −1, +1]; empty for the exact involute.
+  std::vector<BiarcFlank> biarcs_;
 };
 
 }  // namespace geardyn
