@@ -9,8 +9,11 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include "geardyn/common/errors.hpp"
+#include "geardyn/models/contact/biarc_profile.hpp"
 #include "geardyn/models/mesh/mesh_cores.hpp"
 #include "geardyn/models/mesh/mesh_jacobian.hpp"
 #include "support/contact_pairs.hpp"
@@ -84,32 +87,38 @@ TEST(ContactMeshCoreTest, JacobiansMatchFiniteDifferences) {
   const auto setup = MakeContactPair(KimRigPair());
   for (const ToothBodyType type :
        {ToothBodyType::kRigid, ToothBodyType::kRevolute, ToothBodyType::kBushing}) {
-    ContactMeshDef def = RevoluteDef();
-    def.teeth = type;
-    const ContactMeshCore core(setup.pair, setup.frame, def);
-    auto ws = core.MakeWorkspace();
-    const State s = LoadedState(core, 7, 3e-6);
-    const NonlinearMeshCoreOutput out = Eval(core, *ws, s, true);
-    ASSERT_GT(out.num_contacts, 0) << ToString(type);
-    const int n = core.num_coordinates();
-    MatrixX fd_k(n, n), fd_c(n, n);
-    for (int j = 0; j < n; ++j) {
-      const double hx = j < 12 ? (j % 6 < 3 ? 1e-10 : 1e-9) : 1e-9;
-      State p = s, m = s;
-      p.x(j) += hx;
-      m.x(j) -= hx;
-      fd_k.col(j) = -(Eval(core, *ws, p, false).force - Eval(core, *ws, m, false).force) / (2 * hx);
-      const double hv = 1e-4;
-      p = s;
-      m = s;
-      p.v(j) += hv;
-      m.v(j) -= hv;
-      fd_c.col(j) = -(Eval(core, *ws, p, false).force - Eval(core, *ws, m, false).force) / (2 * hv);
+    for (const ContactProfile profile : {ContactProfile::kInvolute, ContactProfile::kBiarc}) {
+      ContactMeshDef def = RevoluteDef();
+      def.teeth = type;
+      def.profile = profile;
+      def.arcs = 3;
+      const ContactMeshCore core(setup.pair, setup.frame, def);
+      auto ws = core.MakeWorkspace();
+      const State s = LoadedState(core, 7, 3e-6);
+      const NonlinearMeshCoreOutput out = Eval(core, *ws, s, true);
+      ASSERT_GT(out.num_contacts, 0) << ToString(type);
+      const int n = core.num_coordinates();
+      MatrixX fd_k(n, n), fd_c(n, n);
+      for (int j = 0; j < n; ++j) {
+        const double hx = j < 12 ? (j % 6 < 3 ? 1e-10 : 1e-9) : 1e-9;
+        State p = s, m = s;
+        p.x(j) += hx;
+        m.x(j) -= hx;
+        fd_k.col(j) =
+            -(Eval(core, *ws, p, false).force - Eval(core, *ws, m, false).force) / (2 * hx);
+        const double hv = 1e-4;
+        p = s;
+        m = s;
+        p.v(j) += hv;
+        m.v(j) -= hv;
+        fd_c.col(j) =
+            -(Eval(core, *ws, p, false).force - Eval(core, *ws, m, false).force) / (2 * hv);
+      }
+      const double scale_k = fd_k.cwiseAbs().maxCoeff();
+      const double scale_c = fd_c.cwiseAbs().maxCoeff();
+      EXPECT_LT((out.stiffness - fd_k).cwiseAbs().maxCoeff(), 1e-3 * scale_k) << ToString(type);
+      EXPECT_LT((out.damping - fd_c).cwiseAbs().maxCoeff(), 1e-3 * scale_c) << ToString(type);
     }
-    const double scale_k = fd_k.cwiseAbs().maxCoeff();
-    const double scale_c = fd_c.cwiseAbs().maxCoeff();
-    EXPECT_LT((out.stiffness - fd_k).cwiseAbs().maxCoeff(), 1e-3 * scale_k) << ToString(type);
-    EXPECT_LT((out.damping - fd_c).cwiseAbs().maxCoeff(), 1e-3 * scale_c) << ToString(type);
   }
 }
 
@@ -118,27 +127,31 @@ TEST(ContactMeshCoreTest, PowerIdentityHoldsAtRandomStates) {
   const auto setup = MakeContactPair(KimRigPair());
   for (const ToothBodyType type :
        {ToothBodyType::kRigid, ToothBodyType::kRevolute, ToothBodyType::kBushing}) {
-    ContactMeshDef def = RevoluteDef();
-    def.teeth = type;
-    const ContactMeshCore core(setup.pair, setup.frame, def);
-    auto ws = core.MakeWorkspace();
-    for (unsigned seed = 1; seed <= 5; ++seed) {
-      const State s = LoadedState(core, seed, 2e-6);
-      const NonlinearMeshCoreOutput out = Eval(core, *ws, s, false);
-      ASSERT_GT(out.num_contacts, 0);
-      const double h = 1e-9;  // s: the state moves by ≈ 1e-12 m, below the kinks' spacing
-      State p = s, m = s;
-      p.x += h * s.v;
-      m.x -= h * s.v;
-      p.theta += h * s.theta_rate;
-      m.theta -= h * s.theta_rate;
-      const double de =
-          (Eval(core, *ws, p, false).energy - Eval(core, *ws, m, false).energy) / (2 * h);
-      const double lhs = out.force.dot(s.v);
-      const double rhs = -de + out.phase_power - out.dissipation_power;
-      const double scale = std::abs(lhs) + std::abs(out.phase_power) + out.dissipation_power;
-      EXPECT_NEAR(lhs, rhs, 1e-5 * scale) << ToString(type) << " seed " << seed;
-      EXPECT_GE(out.dissipation_power, 0.0);
+    for (const ContactProfile profile : {ContactProfile::kInvolute, ContactProfile::kBiarc}) {
+      ContactMeshDef def = RevoluteDef();
+      def.teeth = type;
+      def.profile = profile;
+      def.arcs = 3;
+      const ContactMeshCore core(setup.pair, setup.frame, def);
+      auto ws = core.MakeWorkspace();
+      for (unsigned seed = 1; seed <= 5; ++seed) {
+        const State s = LoadedState(core, seed, 2e-6);
+        const NonlinearMeshCoreOutput out = Eval(core, *ws, s, false);
+        ASSERT_GT(out.num_contacts, 0);
+        const double h = 1e-9;  // s: the state moves by ≈ 1e-12 m, below the kinks' spacing
+        State p = s, m = s;
+        p.x += h * s.v;
+        m.x -= h * s.v;
+        p.theta += h * s.theta_rate;
+        m.theta -= h * s.theta_rate;
+        const double de =
+            (Eval(core, *ws, p, false).energy - Eval(core, *ws, m, false).energy) / (2 * h);
+        const double lhs = out.force.dot(s.v);
+        const double rhs = -de + out.phase_power - out.dissipation_power;
+        const double scale = std::abs(lhs) + std::abs(out.phase_power) + out.dissipation_power;
+        EXPECT_NEAR(lhs, rhs, 1e-5 * scale) << ToString(type) << " seed " << seed;
+        EXPECT_GE(out.dissipation_power, 0.0);
+      }
     }
   }
 }
@@ -252,6 +265,101 @@ TEST(ContactMeshCoreTest, RigidTeethShareTheStaticLoadEqually) {
   }
 }
 
+// Biarc flanks converge to the exact involute: the body forces of rigid teeth under the linear law
+// over a mesh cycle (one- and two-pair zones, 1 µm approach) differ from the exact core's by at
+// most k·(deviation of both flanks) per loaded pair, and the difference falls at the order of
+// the profile deviation (≈ 3, biarc_profile.hpp) as N doubles.
+TEST(ContactMeshCoreTest, BiarcForcesConvergeToTheExactInvoluteAtTheDeviationsOrder) {
+  const auto setup = MakeContactPair(KimRigPair());
+  const double k = 4e8;
+  ContactMeshDef def;
+  def.law = LinearContactLaw(k, 0.0);
+  const ContactMeshCore exact(setup.pair, setup.frame, def);
+  auto ws = exact.MakeWorkspace();
+  const double rb1 = exact.kinematics().pinion().base_radius;
+  std::vector<double> errors, devs;
+  for (const int n : {4, 8, 16, 32}) {
+    def.profile = ContactProfile::kBiarc;
+    def.arcs = n;
+    const ContactMeshCore biarc(setup.pair, setup.frame, def);
+    const double dev = BiarcFlank(exact.kinematics().pinion(), -1, n).max_deviation() +
+                       BiarcFlank(exact.kinematics().gear(), -1, n).max_deviation();
+    double err = 0.0;
+    for (int i = 0; i < 400; ++i) {
+      State s;
+      s.x = VectorX::Zero(exact.num_coordinates());
+      s.v = VectorX::Zero(exact.num_coordinates());
+      s.x(5) = 1e-6 / rb1;
+      s.theta = -std::acos(-1.0) + 2.0 * std::acos(-1.0) * (i + 0.5) / 400.0;
+      const NonlinearMeshCoreOutput fe = Eval(exact, *ws, s, false);
+      const NonlinearMeshCoreOutput fb = Eval(biarc, *ws, s, false);
+      // Near a pair change a contact can be closed in one profile and open by < dev in the other.
+      const int pairs = std::max(fe.num_contacts, fb.num_contacts);
+      // Moment about the pinion axis: Σ f r_b1 (lever errors are O(h²) relative, far smaller).
+      const double diff = std::abs(fb.force(5) - fe.force(5)) / rb1;
+      EXPECT_LE(diff, pairs * k * dev * 1.05) << "N " << n << " theta " << s.theta;
+      err += diff * diff / 400.0;
+    }
+    errors.push_back(std::sqrt(err));
+    devs.push_back(dev);
+  }
+  RecordProperty("force_errors_N", ::testing::PrintToString(errors));
+  // Each halving gains at least second order; over N = 4 → 32 the force error falls at the order
+  // the deviation itself falls (the RMS over the cycle mixes the smooth O(h³) part with the pair
+  // changes, where a contact is closed in one profile only, so single steps scatter: 2.6–4.2).
+  for (size_t i = 1; i < errors.size(); ++i) {
+    EXPECT_GT(std::log2(errors[i - 1] / errors[i]), 2.0) << "N " << (4 << i);
+  }
+  const double order = std::log2(errors.front() / errors.back()) / 3.0;
+  const double order_dev = std::log2(devs.front() / devs.back()) / 3.0;
+  EXPECT_NEAR(order, order_dev, 0.35) << "force " << order << " deviation " << order_dev;
+}
+
+// Quasi-static transmission error of rigid teeth under Kim's law at the rig's 100 N·m: the pinion
+// rotation that carries the torque, found by Newton on the moment for each profile. A rigid
+// rotation changes every pair's δ by the same amount (law of gearing), and the biarc δ lies within
+// dev = dev₁ + dev₂ of the exact δ, so the static TE of the two differs by at most dev; the
+// mesh stiffness dF/dTE by at most (m1 − 1)·dev/δ relative (Kim's f = k δ^m1).
+TEST(ContactMeshCoreTest, BiarcStaticTransmissionErrorWithinTheDeviation) {
+  const auto setup = MakeContactPair(KimRigPair());
+  ContactMeshDef def;  // Kim's law, rigid teeth
+  const ContactMeshCore exact(setup.pair, setup.frame, def);
+  auto ws = exact.MakeWorkspace();
+  const double rb1 = exact.kinematics().pinion().base_radius, torque = 100.0;
+  // Static TE [m] along the line of action and the tangent stiffness [N/m] at phase θ.
+  auto solve = [&](const ContactMeshCore& core, double theta) {
+    State s;
+    s.x = VectorX::Zero(core.num_coordinates());
+    s.v = VectorX::Zero(core.num_coordinates());
+    s.theta = theta;
+    s.x(5) = 1e-6 / rb1;
+    double kt = 0.0, residual = torque;
+    for (int it = 0; it < 50 && std::abs(residual) > 1e-10 * torque; ++it) {
+      const NonlinearMeshCoreOutput out = Eval(core, *ws, s, true);
+      residual = -out.force(5) - torque;  // moment of the contacts = load
+      kt = out.stiffness(5, 5);
+      s.x(5) -= residual / kt;
+    }
+    EXPECT_LT(std::abs(residual), 1e-10 * torque) << "Newton on the moment, theta " << theta;
+    return std::pair{s.x(5) * rb1, kt / (rb1 * rb1)};
+  };
+  for (const int n : {2, 4, 8}) {
+    def.profile = ContactProfile::kBiarc;
+    def.arcs = n;
+    const ContactMeshCore biarc(setup.pair, setup.frame, def);
+    const double dev = BiarcFlank(exact.kinematics().pinion(), -1, n).max_deviation() +
+                       BiarcFlank(exact.kinematics().gear(), -1, n).max_deviation();
+    for (const double theta : {-2.5, -1.0, 0.0, 0.5, 2.0}) {
+      const auto [te_e, k_e] = solve(exact, theta);
+      const auto [te_b, k_b] = solve(biarc, theta);
+      EXPECT_LE(std::abs(te_b - te_e), 1.02 * dev) << "N " << n << " theta " << theta;
+      EXPECT_LE(std::abs(k_b - k_e),
+                (def.law.stiffness_exponent - 1.0) * dev / (te_e * 0.5) * k_e + 1e-6 * k_e)
+          << "N " << n << " theta " << theta;
+    }
+  }
+}
+
 TEST(ContactMeshCoreTest, UnsupportedOptionsAreRefused) {
   const auto helical = MakeContactPair(test::HelicalPair());
   EXPECT_THROWS_MESSAGE(ContactMeshCore(helical.pair, helical.frame, RevoluteDef()), InvalidInput,
@@ -259,7 +367,11 @@ TEST(ContactMeshCoreTest, UnsupportedOptionsAreRefused) {
   const auto spur = MakeContactPair(KimRigPair());
   ContactMeshDef def;
   def.profile = ContactProfile::kBiarc;
-  EXPECT_THROWS_MESSAGE(ContactMeshCore(spur.pair, spur.frame, def), InvalidInput, "def.profile");
+  EXPECT_THROWS_MESSAGE(ContactMeshCore(helical.pair, helical.frame, def), InvalidInput,
+                        "def.profile: \"biarc\" flanks need a spur pair");
+  def.arcs = 0;
+  EXPECT_THROWS_MESSAGE(ContactMeshCore(spur.pair, spur.frame, def), InvalidInput,
+                        "def.arcs: 0 must lie in");
 }
 
 }  // namespace
