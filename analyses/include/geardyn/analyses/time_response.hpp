@@ -1,0 +1,259 @@
+/// @file
+/// @brief Time integration of an assembled gear system (issue 14, spec 03 "Outputs and runs"):
+/// one speed to steady state, stepped up/down sweeps over mesh frequency, independent speeds in
+/// parallel, and the static equilibrium to start from — the engine of `geardyn simulate`.
+///
+/// **Equation** (the model harmonic balance solves, with the internal coordinates of nonlinear
+/// cores appended). State y = [x; v], x = [q (num_dofs); x_int (Σ internal coordinates, mesh by
+/// mesh)], θ = θ₀ + ω_m t, θ_k = r_k θ + φ_k:
+/// \f[ M\ddot x + C_0 \dot x + K_0 x + \sum_k f_k(x, \dot x, θ_k, \dot θ_k) = f_0, \f]
+/// with M = system mass + every core's InternalMass() and, per mesh core form,
+/// * LinearMeshCore: f_k = P_kᵀ G_kᵀ [K2(θ_k)(δ − ε(θ_k)) + C2(θ_k) δ̇] (B–S Eq. 39) — the LTV
+///   model the linear HB solves (workspace.hpp kernels);
+/// * SliceMeshCore: f_k = P_kᵀ G_kᵀ F_slice(δ, θ_k) + P_kᵀ C̄2_k P_k δ̇ with C̄2_k the θ-mean of
+///   the all-loaded mesh damping — exactly the nonlinear HB's equation (system_nonlinear_hb.hpp:
+///   the mesh damper acts also while the teeth separate);
+/// * NonlinearMeshCore: −force of CalcForces on [q_i; q_j; x_int].
+///
+/// **Integrators** (TimeIntegrator; the selection rule of kAuto is in TimeIntegrationOptions):
+/// * kGeneralizedAlpha — Chung & Hulbert (1993) generalized-α with spectral radius ρ∞, Newton
+///   with the analytic tangent (dense LU below kSparseStateThreshold coordinates, SparseLU
+///   above), adaptive step from the local error estimate of Zienkiewicz & Xie (1991);
+/// * kRungeKutta — GSL gsl_odeiv2 rk8pd (Dormand–Prince 8(7)) with its own step control.
+/// Both locate contact switches: the switching functions (the cores' `switching`, and for slice
+/// cores the slice gaps a_s and a_s + j) are watched at every accepted step; a sign change
+/// inside a step is located by bisection on re-steps to `event_time_tolerance` and the
+/// integration restarts there.
+///
+/// **Energy balance** per recorded period: input work W = ∫(f₀ᵀv + ΣP_k) dt, stored change
+/// ΔS = Δ(T + V₀ + ΣE_k), dissipation D = ∫(vᵀC₀v + ΣD_k) dt (D_k, P_k of the mesh forces: for
+/// linear/slice cores the damper power and the phase power ∂E_k/∂θ·θ̇), integrated with the
+/// solution (extra quadrature states on the Runge–Kutta path, the trapezoidal rule consistent
+/// with the step on the generalized-α path). Relative error |W − ΔS − D| / max(|W|, D, |ΔS|).
+///
+/// **Results.** Every run returns what it computed so far even when it fails or is cancelled
+/// (Summary status + message; the library never prints). No verdict (steady) without a clean
+/// status: `steady` is three-valued through SteadyVerdict.
+///
+/// Reentrant; the speeds of SimulateSpeeds run in parallel with OpenMP (one workspace per
+/// thread).
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "geardyn/common/eigen_types.hpp"
+#include "geardyn/common/summary.hpp"
+#include "geardyn/system/system_model.hpp"
+
+namespace geardyn {
+
+/// Number of coordinates (system DOF + internal) from which the implicit integrator uses sparse
+/// factorizations.
+inline constexpr int kSparseStateThreshold = 200;
+
+/// @brief The integration method.
+enum class TimeIntegrator {
+  kAuto,              ///< chosen per run by the stiffness rule (TimeIntegrationOptions)
+  kGeneralizedAlpha,  ///< implicit, Chung–Hulbert generalized-α, Newton, adaptive step
+  kRungeKutta,        ///< explicit, GSL rk8pd, adaptive step
+};
+/// "auto", "generalized_alpha", "runge_kutta".
+const char* ToString(TimeIntegrator integrator);
+/// Parses ToString's names; false on an unknown name.
+bool ParseTimeIntegrator(const std::string& name, TimeIntegrator* out);
+
+/// @brief Options of one integration (shared by every run kind).
+struct TimeIntegrationOptions {
+  /// Method. kAuto: with ω_max the highest undamped natural frequency of the mean linear system
+  /// [rad/s] and Δt_acc = mesh period / samples_per_period, the explicit kRungeKutta when
+  /// ω_max·Δt_acc < auto_stiffness_limit (its stable step is not far below the accuracy step),
+  /// otherwise kGeneralizedAlpha (stiff: tooth bodies, stiff bearings).
+  TimeIntegrator integrator = TimeIntegrator::kAuto;
+  double auto_stiffness_limit = 50.0;  ///< kAuto threshold on ω_max·Δt_acc [-], in (0, 1e6]
+  /// Local relative error tolerance per step [-], in [1e-14, 1e-2].
+  double relative_tolerance = 1e-8;
+  /// Absolute error scale of coordinates, as a fraction of max |static deflection| (or of 1e-6
+  /// m when that is zero) [-], in [1e-14, 1].
+  double absolute_tolerance = 1e-8;
+  double spectral_radius = 0.9;  ///< ρ∞ of generalized-α [-], in [0, 1]
+  /// Newton tolerance of generalized-α on the scaled residual [-], in [1e-14, 1e-3].
+  double newton_tolerance = 1e-10;
+  int max_newton_iterations = 12;  ///< per step, in [1, 100]
+  /// Largest step as a fraction of the mesh period [-], in (0, 1].
+  double max_step_fraction = 0.05;
+  /// Limit on the steps of one run (all periods), in [1, 1e9]; exceeded → kNotConverged.
+  long max_steps = 100000000;
+  bool locate_events = true;  ///< locate switching-function zeros (false: step over them)
+  /// Time tolerance of event location, as a fraction of the mesh period [-], in [1e-14, 1e-2].
+  double event_time_tolerance = 1e-9;
+  /// Output samples per mesh period of the recorded periods, in [4, 65536].
+  int samples_per_period = 64;
+  /// Keep every `channel_decimation`-th sample of the cores' channel histories, in [1, 65536].
+  int channel_decimation = 1;
+  bool record_element_forces = true;  ///< per-element force histories
+  /// False (with the field, value and bound in `why`) on an invalid value.
+  bool IsValid(std::string* why) const;
+};
+
+/// @brief Steady-state detection: the response is steady when, for `consecutive_periods`
+/// periods in a row, the change of the state at the period start (‖Δx‖/‖x‖ + ‖Δv‖/‖v‖, scaled)
+/// and of the DTE RMS of every mesh from one period to the next is below `tolerance`.
+struct SteadyStateOptions {
+  double tolerance = 1e-6;      ///< relative period-to-period change [-], in [1e-14, 1]
+  int consecutive_periods = 3;  ///< k, in [1, 1000]
+  int min_periods = 2;          ///< periods always integrated before a test, in [0, 1e7]
+  int max_periods = 3000;       ///< limit: ends with kNotConverged, in [1, 1e7]
+  /// The period is period_multiple × P mesh cycles (P the model's hunting period), in [1, 1000]
+  /// (2 for a period-doubled response).
+  int period_multiple = 1;
+  int record_periods = 1;  ///< periods recorded after steady state, in [1, 1000]
+  /// False (with the field, value and bound in `why`) on an invalid value.
+  bool IsValid(std::string* why) const;
+};
+
+/// Three-valued steady-state verdict: kUndetermined whenever the run failed.
+enum class SteadyVerdict { kSteady, kNotSteady, kUndetermined };
+/// "steady", "not_steady", "undetermined".
+const char* ToString(SteadyVerdict verdict);
+
+/// @brief Progress of a run: fraction in [0, 1] and a short note; called from the calling thread
+/// only (SimulateSpeeds: from the thread that started it, between speeds).
+using TimeProgress = std::function<void(double fraction, const std::string& note)>;
+
+/// @brief Energy balance of one period (see the @file).
+struct EnergyBalancePeriod {
+  double input_work = 0.0;      ///< W [J]
+  double stored_change = 0.0;   ///< ΔS [J]
+  double dissipated = 0.0;      ///< D [J]
+  double relative_error = 0.0;  ///< |W − ΔS − D| / max(|W|, |ΔS|, D) [-]
+};
+
+/// @brief Histories and statistics of one mesh over the recorded periods.
+struct MeshTimeHistory {
+  std::string name;
+  VectorX dte;                    ///< (samples) DTE = δ_η − ε_η (probes.hpp) [m]
+  VectorX force;                  ///< (samples) F_η (elastic + damping) [N]; empty for nonlinear
+  double mean_dte = 0.0;          ///< [m]
+  double rms_dte = 0.0;           ///< RMS of DTE − mean [m]
+  double peak_to_peak_dte = 0.0;  ///< [m]
+  /// Fraction of the samples without drive-flank contact (slice: no slice loaded; nonlinear:
+  /// num_contacts == 0; linear: 0).
+  double contact_loss_fraction = 0.0;
+  std::vector<std::string> channel_names;  ///< nonlinear cores' channel names (with units)
+  MatrixX channels;  ///< (channels × decimated samples), nonlinear cores only
+};
+
+/// @brief The response at one mesh frequency.
+struct TimeResponse {
+  double mesh_frequency_hz = 0.0;  ///< f_m [Hz]
+  TimeIntegrator integrator_used = TimeIntegrator::kAuto;
+  VectorX time;                         ///< (samples) of the recorded periods [s]
+  std::vector<MeshTimeHistory> meshes;  ///< per mesh, in model order
+  /// Per element, (6 or 12 × samples) f_e = K_e q_e + C_e q̇_e (probes.hpp convention) [N, N·m];
+  /// empty unless record_element_forces.
+  std::vector<MatrixX> element_forces;
+  std::vector<EnergyBalancePeriod> energy;  ///< one per integrated period (transient included)
+  double max_energy_error = 0.0;            ///< max relative_error over `energy` [-]
+  int periods = 0;                          ///< periods integrated before recording
+  SteadyVerdict steady = SteadyVerdict::kUndetermined;
+  long steps = 0;   ///< accepted steps
+  long events = 0;  ///< located switching events
+  /// Final state [x; v] (2·(num_dofs + internal)) and phase θ [rad] to continue from.
+  VectorX final_state;
+  double final_phase = 0.0;
+  Summary summary;
+};
+
+/// @brief Options of one run to steady state.
+struct TimeResponseOptions {
+  TimeIntegrationOptions integration;
+  SteadyStateOptions steady;
+  /// Start from the static equilibrium at θ₀ (SolveTimeDomainStatic) at rest; otherwise from
+  /// `initial_state` (size 2·(num_dofs + internal)).
+  bool start_from_static = true;
+  VectorX initial_state;
+  double initial_phase = 0.0;  ///< θ₀ [rad]
+  /// False (with the field, value and bound in `why`) on an invalid value.
+  bool IsValid(std::string* why) const;
+};
+
+/// @brief Integrates at mesh frequency f_m [Hz] until steady (see SteadyStateOptions), then
+/// records `record_periods` periods.
+/// @param[in] cancel optional flag: when it becomes true the run stops with kNotConverged and
+///   the message "cancelled", keeping what it has.
+/// @throws InvalidInput on f_m ≤ 0 or non-finite, invalid options, a wrong initial-state size,
+///   or a model without meshes.
+TimeResponse SimulateSteadyState(const SystemModel& model, double mesh_frequency_hz,
+                                 const TimeResponseOptions& options,
+                                 const TimeProgress& progress = {},
+                                 const std::atomic<bool>* cancel = nullptr);
+
+/// @brief Sweep branch.
+enum class SweepBranch { kUp, kDown };
+/// "up", "down".
+const char* ToString(SweepBranch branch);
+
+/// @brief One point of a stepped sweep (statistics of the recorded periods).
+struct TimeSweepPoint {
+  double mesh_frequency_hz = 0.0;
+  SweepBranch branch = SweepBranch::kUp;
+  std::vector<double> rms_dte;                ///< per mesh [m]
+  std::vector<double> mean_dte;               ///< per mesh [m]
+  std::vector<double> peak_to_peak_dte;       ///< per mesh [m]
+  std::vector<double> contact_loss_fraction;  ///< per mesh [-]
+  int periods = 0;
+  SteadyVerdict steady = SteadyVerdict::kUndetermined;
+  double max_energy_error = 0.0;
+  Status status = Status::kSuccess;
+  std::string message;
+};
+
+/// @brief Options of a stepped sweep.
+struct TimeSweepOptions {
+  TimeResponseOptions response;  ///< per point (initial_state/phase: the first point only)
+  bool up = true;                ///< run the increasing-frequency branch
+  bool down = true;              ///< run the decreasing-frequency branch
+  /// False (with the field, value and bound in `why`) on an invalid value.
+  bool IsValid(std::string* why) const;
+};
+
+/// @brief Result of a stepped sweep: the points of the up branch (increasing f) then of the down
+/// branch (decreasing f); the run stops at the first failed point of a branch (kept, with its
+/// status) and goes on with the other branch.
+struct TimeSweep {
+  std::vector<TimeSweepPoint> points;
+  Summary summary;  ///< worst status of the points; counters: steps, events, points
+};
+
+/// @brief Stepped sweep: each point starts from the final state and phase of the previous one
+/// (carried across the speed change), so both branches of a jump are found.
+/// @param[in] frequencies_hz mesh frequencies [Hz], each > 0, strictly increasing.
+/// @throws InvalidInput on bad frequencies or options.
+TimeSweep SimulateSweep(const SystemModel& model, const std::vector<double>& frequencies_hz,
+                        const TimeSweepOptions& options, const TimeProgress& progress = {},
+                        const std::atomic<bool>* cancel = nullptr);
+
+/// @brief Independent runs at several mesh frequencies, in parallel (OpenMP, at most `threads`
+/// threads; 0 = OpenMP's default). Each starts as `options` says.
+/// @throws InvalidInput on bad frequencies (each > 0, finite) or options, threads < 0.
+std::vector<TimeResponse> SimulateSpeeds(const SystemModel& model,
+                                         const std::vector<double>& frequencies_hz,
+                                         const TimeResponseOptions& options, int threads = 0,
+                                         const TimeProgress& progress = {},
+                                         const std::atomic<bool>* cancel = nullptr);
+
+/// @brief The static equilibrium at phase θ₀: K0 x + Σ f_k(x, 0, θ_k) = f0 by Newton with the
+/// cores' tangents; rigid-body modes of the mean stiffness handled as SolveStaticDeflection
+/// (minimum-norm solution, the unbalanced part of f0 removed with a warning).
+struct TimeDomainStatic {
+  VectorX state;  ///< x = [q; x_int] [m, rad]
+  int iterations = 0;
+  Summary summary;
+};
+/// @throws InvalidInput on a non-finite θ₀ or a model without meshes.
+TimeDomainStatic SolveTimeDomainStatic(const SystemModel& model, double theta0 = 0.0);
+
+}  // namespace geardyn
