@@ -15,9 +15,9 @@ using Columns = std::vector<std::pair<std::string, std::vector<double>>>;
 Columns MakeColumns(const MeshParameterSamples& s) {
   const std::size_t n = s.stiffness.size();
   GEARDYN_THROW_UNLESS(n >= 1, "mesh " << s.mesh << ": quasi-static samples: none");
-  GEARDYN_THROW_UNLESS(std::isfinite(s.half_face_width) && s.half_face_width > 0.0,
-                       "mesh " << s.mesh << ": half_face_width: must be > 0, got "
-                               << s.half_face_width);
+  GEARDYN_THROW_UNLESS(
+      std::isfinite(s.half_face_width) && s.half_face_width > 0.0,
+      "mesh " << s.mesh << ": half_face_width: must be > 0, got " << s.half_face_width);
   const auto check = [&](const std::vector<double>& v, const char* what) {
     GEARDYN_THROW_UNLESS(v.empty() || v.size() == n, "mesh " << s.mesh << ": " << what << ": "
                                                              << v.size() << " samples, stiffness "

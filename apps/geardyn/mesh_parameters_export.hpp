@@ -20,11 +20,11 @@ namespace geardyn::app {
 
 /// One mesh's quasi-static samples over one mesh cycle (S ≥ 1 samples, θ_s = 2πs/S).
 struct MeshParameterSamples {
-  std::string mesh;                      ///< the mesh's name (scene `[[mesh]]` name)
-  double half_face_width = 0.0;          ///< b > 0 [m]
-  std::vector<double> stiffness;         ///< (S) K(θ_s) [N/m], ≥ 0
-  std::vector<double> stiffness_h;       ///< (S) K·h [N] (empty: centred load, h = 0)
-  std::vector<double> stiffness_mu_b2;   ///< (S) K·μ·b² [N·m] (empty: the reader's default μ)
+  std::string mesh;                     ///< the mesh's name (scene `[[mesh]]` name)
+  double half_face_width = 0.0;         ///< b > 0 [m]
+  std::vector<double> stiffness;        ///< (S) K(θ_s) [N/m], ≥ 0
+  std::vector<double> stiffness_h;      ///< (S) K·h [N] (empty: centred load, h = 0)
+  std::vector<double> stiffness_mu_b2;  ///< (S) K·μ·b² [N·m] (empty: the reader's default μ)
   std::vector<double> transmission_error;  ///< (S) ε_η [m] (empty: none)
 };
 
