@@ -79,8 +79,9 @@ struct TimeIntegrationOptions {
   /// m when that is zero) [-], in [1e-14, 1].
   double absolute_tolerance = 1e-8;
   double spectral_radius = 0.9;  ///< ρ∞ of generalized-α [-], in [0, 1]
-  /// Newton tolerance of generalized-α on the scaled residual [-], in [1e-14, 1e-3].
-  double newton_tolerance = 1e-10;
+  /// Newton of generalized-α stops when its update, measured in units of the local error
+  /// tolerance (the step-control scale), is below this [-], in [1e-10, 0.5].
+  double newton_tolerance = 1e-3;
   int max_newton_iterations = 12;  ///< per step, in [1, 100]
   /// Largest step as a fraction of the mesh period [-], in (0, 1].
   double max_step_fraction = 0.05;

@@ -1,0 +1,413 @@
+/// @file
+/// @brief TdSystem: the time-domain equation of a SystemModel and the force kernel EvalForces.
+#include "td_system.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <cmath>
+#include <numbers>
+#include <variant>
+
+#include "geardyn/common/check.hpp"
+#include "geardyn/common/overloaded.hpp"
+#include "geardyn/numerics/rigid_modes.hpp"
+#include "geardyn/system/static_deflection.hpp"
+#include "geardyn/system/system_harmonics.hpp"
+#include "geardyn/system/workspace.hpp"
+
+namespace geardyn::internal {
+namespace {
+
+/// Step of the central difference that gives the phase power ∂E/∂θ_k·θ̇_k of linear and slice
+/// cores [rad]: the truncation error O(h²·E''') is ~1e-10 of E for θ-coefficients with mesh
+/// harmonics up to ~30, far below the 1e-4 target of the energy balance.
+constexpr double kPhaseStep = 1e-5;
+
+/// θ-mean of a slice core's all-loaded damping C2 = (c_m/Σk_s) K2 from samples (used when the
+/// harmonic expansion is not available: a phase ratio ≠ 1).
+Matrix2 SampledSliceDamping(const SliceMeshCore& core, double c_m) {
+  SliceMeshWorkspace ws(core);
+  const std::int64_t P = PeriodMeshes(core);
+  const int samples = 256 * static_cast<int>(P);
+  Matrix2 sum = Matrix2::Zero();
+  for (int s = 0; s < samples; ++s) {
+    const double th = 2.0 * std::numbers::pi * static_cast<double>(P) * s / samples;
+    const Vector3 c = EvalSliceChannels(core, ws, th);
+    if (c(0) > 0.0) {
+      Matrix2 k2;
+      k2 << c(0), -c(1), -c(1), c(2);
+      sum += (c_m / c(0)) * k2;
+    }
+  }
+  return sum / samples;
+}
+
+/// E of a linear core at (θ_k, δ): ½ eᵀK2e, e = δ − ε [J].
+double LinearEnergy(const LinearMeshCore& core, double theta, const Vector2& delta) {
+  const Vector2 e = delta - EvalTransmissionError(core, theta);
+  return 0.5 * e.dot(EvalStiffnessCore(core, theta) * e);
+}
+
+}  // namespace
+
+TdSystem::TdSystem(const SystemModel& m) : model(m) {
+  num_dofs = model.num_dofs();
+  // Internal coordinates of the nonlinear cores, appended mesh by mesh.
+  int internal = 0;
+  int switching = 0;
+  bool all_unit_ratio = true;
+  bool any_slice = false;
+  for (int k = 0; k < model.num_meshes(); ++k) {
+    const SystemMesh& mesh = model.meshes()[k];
+    TdMeshTerm t;
+    t.mesh = k;
+    t.dofs = mesh.dofs;
+    t.G = mesh.G;
+    t.phase_ratio = mesh.phase_ratio;
+    t.phase_offset = mesh.phase_offset;
+    t.damping_coefficient = mesh.damping_coefficient;
+    all_unit_ratio = all_unit_ratio && mesh.phase_ratio == 1.0;
+    std::visit(Overloaded{
+                   [&](const LinearMeshCore& core) {
+                     t.kind = TdMeshTerm::Kind::kLinear;
+                     t.linear = &core;
+                   },
+                   [&](const SliceMeshCore& core) {
+                     t.kind = TdMeshTerm::Kind::kSlice;
+                     t.slice = &core;
+                     t.num_switching = core.num_slices() * (core.has_back_flank() ? 2 : 1);
+                     any_slice = true;
+                   },
+                   [&](const std::shared_ptr<const NonlinearMeshCore>& core) {
+                     GEARDYN_THROW_UNLESS(core != nullptr, "time integration: mesh '"
+                                                               << mesh.name
+                                                               << "' has a null NonlinearMeshCore");
+                     t.kind = TdMeshTerm::Kind::kNonlinear;
+                     t.nonlinear = core.get();
+                     t.num_internal = core->num_internal_coordinates();
+                     t.num_switching = core->num_switching_functions();
+                   },
+               },
+               mesh.core);
+    t.internal_offset = num_dofs + internal;
+    internal += t.num_internal;
+    t.switching_offset = switching;
+    switching += t.num_switching;
+    terms.push_back(t);
+  }
+  n = num_dofs + internal;
+  num_switching = switching;
+
+  // Slice cores: the nonlinear HB's C̄ (θ-mean of the all-loaded mesh damping, exact harmonic
+  // m = 0 of system_harmonics.hpp), so that simulate integrates the equation the HB solves.
+  if (any_slice) {
+    std::vector<MeshHarmonics> h;
+    if (all_unit_ratio) h = ExpandMeshHarmonics(model, 0);
+    for (TdMeshTerm& t : terms) {
+      if (t.kind != TdMeshTerm::Kind::kSlice) continue;
+      t.mean_damping = all_unit_ratio
+                           ? Matrix2(h[static_cast<std::size_t>(t.mesh)].damping[0].real())
+                           : SampledSliceDamping(*t.slice, t.damping_coefficient);
+    }
+  }
+
+  mass = MatrixX::Zero(n, n);
+  stiffness0 = MatrixX::Zero(n, n);
+  damping0 = MatrixX::Zero(n, n);
+  load0 = VectorX::Zero(n);
+  mass.topLeftCorner(num_dofs, num_dofs) = model.DenseMass();
+  stiffness0.topLeftCorner(num_dofs, num_dofs) = model.DenseConstantStiffness();
+  damping0.topLeftCorner(num_dofs, num_dofs) = model.DenseConstantDamping();
+  for (const TdMeshTerm& t : terms) {
+    if (t.kind != TdMeshTerm::Kind::kNonlinear) continue;
+    const MatrixX mi = t.nonlinear->InternalMass();
+    GEARDYN_THROW_UNLESS(mi.rows() == t.nonlinear->num_coordinates() && mi.cols() == mi.rows(),
+                         "time integration: InternalMass of mesh '"
+                             << model.meshes()[t.mesh].name << "' must be "
+                             << t.nonlinear->num_coordinates() << "×"
+                             << t.nonlinear->num_coordinates());
+    auto index = [&](int a) { return a < 12 ? t.dofs[a] : t.internal_offset + a - 12; };
+    for (int a = 0; a < mi.rows(); ++a) {
+      const int ia = index(a);
+      if (ia < 0) continue;
+      for (int b = 0; b < mi.cols(); ++b) {
+        const int ib = index(b);
+        if (ib >= 0) mass(ia, ib) += mi(a, b);
+      }
+    }
+  }
+  auto ldlt = std::make_shared<Eigen::LDLT<MatrixX>>(mass);
+  GEARDYN_THROW_UNLESS(
+      ldlt->info() == Eigen::Success && ldlt->isPositive() && ldlt->vectorD().minCoeff() > 0.0,
+      "time integration: the mass matrix (system mass plus the cores' "
+      "InternalMass) is not positive definite");
+  mass_ldlt = ldlt;
+
+  // Rigid-body modes of the mean system stiffness (K0 + mean mesh terms; the nonlinear cores'
+  // internal coordinates are excluded: they carry the cores' own springs). The part of f0 along
+  // them is removed M-consistently, f0 − M V (VᵀMV)⁻¹ Vᵀ f0, so that the train does not
+  // accelerate (as SolveStaticDeflection and the nonlinear HB remove it).
+  SystemWorkspace sws(model, StorageKind::kDense);
+  const MatrixX kbar = AssembleMeanStiffness(model, sws);
+  const RigidBodyModes rigid = ComputeRigidBodyModes(kbar);
+  const VectorX f0 = model.constant_load();
+  load0.head(num_dofs) = f0;
+  rigid_modes = MatrixX::Zero(n, rigid.count());
+  if (rigid.count() > 0 && !has_nonlinear()) {
+    rigid_modes.topRows(num_dofs) = rigid.modes;
+    const MatrixX mv = mass * rigid_modes;
+    const MatrixX vmv = rigid_modes.transpose() * mv;
+    const VectorX coef = vmv.ldlt().solve(rigid_modes.transpose() * load0);
+    unbalanced_fraction = rigid.UnbalancedFraction(f0);
+    load0 -= mv * coef;
+  } else {
+    rigid_modes.resize(n, 0);
+  }
+}
+
+bool TdSystem::has_nonlinear() const {
+  for (const TdMeshTerm& t : terms)
+    if (t.kind == TdMeshTerm::Kind::kNonlinear) return true;
+  return false;
+}
+
+TdWorkspace::TdWorkspace(const TdSystem& sys) {
+  force = VectorX::Zero(sys.n);
+  tangent_k = MatrixX::Zero(sys.n, sys.n);
+  tangent_c = MatrixX::Zero(sys.n, sys.n);
+  switching = VectorX::Zero(sys.num_switching);
+  switching_live.assign(static_cast<std::size_t>(sys.num_switching), 0);
+  const std::size_t meshes = sys.terms.size();
+  force_eta.assign(meshes, 0.0);
+  contacts.assign(meshes, -1);
+  core_ws.resize(meshes);
+  core_out.resize(meshes);
+  core_x.resize(meshes);
+  core_v.resize(meshes);
+  slice.resize(meshes);
+  for (const TdMeshTerm& t : sys.terms) {
+    const auto k = static_cast<std::size_t>(t.mesh);
+    if (t.kind == TdMeshTerm::Kind::kSlice) {
+      slice[k] = std::make_unique<SliceMeshWorkspace>(*t.slice);
+    } else if (t.kind == TdMeshTerm::Kind::kNonlinear) {
+      core_ws[k] = t.nonlinear->MakeWorkspace();
+      core_out[k] = t.nonlinear->MakeOutput();
+      core_x[k] = VectorX::Zero(t.nonlinear->num_coordinates());
+      core_v[k] = VectorX::Zero(t.nonlinear->num_coordinates());
+    }
+  }
+}
+
+void EvalForces(const TdSystem& sys, TdWorkspace& ws, double theta, double theta_rate,
+                const Eigen::Ref<const VectorX>& x, const Eigen::Ref<const VectorX>& v,
+                bool with_jacobians) {
+  ws.force.noalias() = sys.load0 - sys.stiffness0 * x - sys.damping0 * v;
+  if (with_jacobians) {
+    ws.tangent_k = sys.stiffness0;
+    ws.tangent_c = sys.damping0;
+  }
+  ws.mesh_energy = 0.0;
+  ws.mesh_dissipation = 0.0;
+  ws.mesh_phase_power = 0.0;
+  for (const TdMeshTerm& t : sys.terms) {
+    const auto k = static_cast<std::size_t>(t.mesh);
+    const double th = t.phase_ratio * theta + t.phase_offset;
+    const double th_rate = t.phase_ratio * theta_rate;
+    if (t.kind == TdMeshTerm::Kind::kNonlinear) {
+      VectorX& xk = ws.core_x[k];
+      VectorX& vk = ws.core_v[k];
+      for (int a = 0; a < 12; ++a) {
+        xk(a) = t.dofs[a] >= 0 ? x(t.dofs[a]) : 0.0;
+        vk(a) = t.dofs[a] >= 0 ? v(t.dofs[a]) : 0.0;
+      }
+      xk.tail(t.num_internal) = x.segment(t.internal_offset, t.num_internal);
+      vk.tail(t.num_internal) = v.segment(t.internal_offset, t.num_internal);
+      NonlinearMeshCoreOutput& out = ws.core_out[k];
+      t.nonlinear->CalcForces(*ws.core_ws[k], th, th_rate, xk, vk, with_jacobians, &out);
+      const int nc = static_cast<int>(xk.size());
+      auto index = [&](int a) { return a < 12 ? t.dofs[a] : t.internal_offset + a - 12; };
+      for (int a = 0; a < nc; ++a) {
+        const int ia = index(a);
+        if (ia < 0) continue;
+        ws.force(ia) += out.force(a);
+        if (!with_jacobians) continue;
+        for (int b = 0; b < nc; ++b) {
+          const int ib = index(b);
+          if (ib < 0) continue;
+          ws.tangent_k(ia, ib) += out.stiffness(a, b);
+          ws.tangent_c(ia, ib) += out.damping(a, b);
+        }
+      }
+      ws.mesh_energy += out.energy;
+      ws.mesh_dissipation += out.dissipation_power;
+      ws.mesh_phase_power += out.phase_power;
+      ws.contacts[k] = out.num_contacts;
+      ws.force_eta[k] = 0.0;
+      for (int i = 0; i < t.num_switching; ++i) {
+        ws.switching(t.switching_offset + i) = out.switching(i);
+        ws.switching_live[static_cast<std::size_t>(t.switching_offset + i)] = 1;
+      }
+      continue;
+    }
+    // Pair deflection δ = G q_pair and its rate.
+    Vector2 delta = Vector2::Zero(), rate = Vector2::Zero();
+    for (int a = 0; a < 12; ++a) {
+      if (t.dofs[a] < 0) continue;
+      delta += t.G.col(a) * x(t.dofs[a]);
+      rate += t.G.col(a) * v(t.dofs[a]);
+    }
+    Vector2 F;
+    Matrix2 J, C2;
+    if (t.kind == TdMeshTerm::Kind::kLinear) {
+      // F = K2(δ − ε) + C2 δ̇ (B–S Eq. 39); E = ½ eᵀK2e; P = ∂E/∂θ_k θ̇_k at fixed δ.
+      const LinearMeshCore& core = *t.linear;
+      J = EvalStiffnessCore(core, th);
+      C2 = EvalDampingCore(core, th, t.damping_coefficient);
+      const Vector2 e = delta - EvalTransmissionError(core, th);
+      F = J * e + C2 * rate;
+      ws.mesh_energy += 0.5 * e.dot(J * e);
+      if (core.has_transmission_error() || Classify(core) != TimeDependence::kConstant) {
+        ws.mesh_phase_power += th_rate *
+                               (LinearEnergy(core, th + kPhaseStep, delta) -
+                                LinearEnergy(core, th - kPhaseStep, delta)) /
+                               (2.0 * kPhaseStep);
+      }
+      ws.contacts[k] = -1;
+    } else {
+      // Slice force with contact loss and back flank; the constant damper C̄2 of the HB.
+      const SliceMeshCore& core = *t.slice;
+      SliceMeshWorkspace& sw = *ws.slice[k];
+      const double u_plus = EvalSliceForce(core, sw, th + kPhaseStep, delta(0), delta(1)).energy;
+      const double u_minus = EvalSliceForce(core, sw, th - kPhaseStep, delta(0), delta(1)).energy;
+      const SliceForce f = EvalSliceForce(core, sw, th, delta(0), delta(1));
+      C2 = t.mean_damping;
+      J = f.jacobian;
+      F = f.force + C2 * rate;
+      ws.mesh_energy += f.energy;
+      ws.mesh_phase_power += th_rate * (u_plus - u_minus) / (2.0 * kPhaseStep);
+      ws.contacts[k] = f.num_loaded;
+      // Switching functions: drive gap a_s and back gap a_s + j of every slice; watched only
+      // where the slice has stiffness (a gap of an unloaded slice switches nothing).
+      const VectorX& sigma = core.sigma();
+      const bool back = core.has_back_flank();
+      const int ns = core.num_slices();
+      for (int s = 0; s < ns; ++s) {
+        const double a = delta(0) - sigma(s) * delta(1) - sw.separation(s);
+        const char live = sw.stiffness(s) > 0.0 ? 1 : 0;
+        const int i0 = t.switching_offset + (back ? 2 * s : s);
+        ws.switching(i0) = a;
+        ws.switching_live[static_cast<std::size_t>(i0)] = live;
+        if (back) {
+          ws.switching(i0 + 1) = a + core.backlash();
+          ws.switching_live[static_cast<std::size_t>(i0 + 1)] = live;
+        }
+      }
+    }
+    ws.mesh_dissipation += rate.dot(C2 * rate);
+    ws.force_eta[k] = F(0);
+    // Force on the pair's coordinates −Gᵀ F; tangents Gᵀ J G and Gᵀ C2 G.
+    const Vector12 fp = -t.G.transpose() * F;
+    Matrix12 kp, cp;
+    if (with_jacobians) {
+      kp.noalias() = t.G.transpose() * J * t.G;
+      cp.noalias() = t.G.transpose() * C2 * t.G;
+    }
+    for (int a = 0; a < 12; ++a) {
+      const int ia = t.dofs[a];
+      if (ia < 0) continue;
+      ws.force(ia) += fp(a);
+      if (!with_jacobians) continue;
+      for (int b = 0; b < 12; ++b) {
+        const int ib = t.dofs[b];
+        if (ib < 0) continue;
+        ws.tangent_k(ia, ib) += kp(a, b);
+        ws.tangent_c(ia, ib) += cp(a, b);
+      }
+    }
+  }
+}
+
+double StoredEnergy(const TdSystem& sys, const TdWorkspace& ws, const Eigen::Ref<const VectorX>& x,
+                    const Eigen::Ref<const VectorX>& v) {
+  return 0.5 * v.dot(sys.mass * v) + 0.5 * x.dot(sys.stiffness0 * x) + ws.mesh_energy;
+}
+
+double DissipationPower(const TdSystem& sys, const TdWorkspace& ws,
+                        const Eigen::Ref<const VectorX>& v) {
+  return v.dot(sys.damping0 * v) + ws.mesh_dissipation;
+}
+
+double EstimateHighestFrequency(const TdSystem& sys, TdWorkspace& ws, double theta,
+                                const VectorX& x) {
+  EvalForces(sys, ws, theta, 0.0, x, VectorX::Zero(sys.n), true);
+  // Power iteration on M⁻¹K (K symmetric PSD, M SPD: real non-negative spectrum); 60 iterations
+  // give the top eigenvalue within a few per cent, enough for the kAuto rule.
+  VectorX z = VectorX::Ones(sys.n);
+  double lambda = 0.0;
+  for (int it = 0; it < 60; ++it) {
+    VectorX y = sys.mass_ldlt->solve(ws.tangent_k * z);
+    const double norm = y.norm();
+    if (!(norm > 0.0) || !std::isfinite(norm)) break;
+    lambda = norm / z.norm();
+    z = y / norm;
+  }
+  return std::sqrt(std::max(lambda, 0.0));
+}
+
+}  // namespace geardyn::internal
+
+namespace geardyn::internal {
+
+TdStatic SolveStatic(const TdSystem& sys, TdWorkspace& ws, double theta0) {
+  TdStatic out;
+  out.x = VectorX::Zero(sys.n);
+  // Start from the linear (all-loaded, mean) static deflection; the internal coordinates at 0.
+  out.x.head(sys.num_dofs) = SolveStaticDeflection(sys.model).deflection;
+  const VectorX zero = VectorX::Zero(sys.n);
+  const int r = static_cast<int>(sys.rigid_modes.cols());
+  const MatrixX mv = sys.mass * sys.rigid_modes;
+  // Newton on force(x, 0, θ₀) = 0, dx = K_t⁻¹ force, bordered by VᵀM dx = 0 on the rigid modes
+  // (the rigid coordinates stay where they are: the solution is unique in the complement).
+  EvalForces(sys, ws, theta0, 0.0, out.x, zero, true);
+  double scale = std::max(out.x.lpNorm<Eigen::Infinity>(), 1e-300);
+  for (int it = 1; it <= 60; ++it) {
+    out.iterations = it;
+    MatrixX a = MatrixX::Zero(sys.n + r, sys.n + r);
+    a.topLeftCorner(sys.n, sys.n) = ws.tangent_k;
+    a.topRightCorner(sys.n, r) = mv;
+    a.bottomLeftCorner(r, sys.n) = mv.transpose();
+    VectorX b = VectorX::Zero(sys.n + r);
+    b.head(sys.n) = ws.force;
+    const Eigen::FullPivLU<MatrixX> lu(a);
+    if (!lu.isInvertible()) {
+      out.message = "static equilibrium: the tangent stiffness is singular at iteration " +
+                    std::to_string(it) + " (a mesh out of contact, or an unsupported body)";
+      return out;
+    }
+    const VectorX dx = lu.solve(b).head(sys.n);
+    if (!dx.allFinite()) {
+      out.message = "static equilibrium: non-finite Newton step at iteration " + std::to_string(it);
+      return out;
+    }
+    // Backtracking on ‖force‖ (the slice force is only piecewise linear).
+    const double f_norm = ws.force.norm();
+    double step = 1.0;
+    VectorX trial = out.x + dx;
+    EvalForces(sys, ws, theta0, 0.0, trial, zero, true);
+    while (ws.force.norm() > f_norm && step > 1e-4) {
+      step *= 0.5;
+      trial = out.x + step * dx;
+      EvalForces(sys, ws, theta0, 0.0, trial, zero, true);
+    }
+    out.x = trial;
+    scale = std::max(out.x.lpNorm<Eigen::Infinity>(), 1e-300);
+    if (step * dx.lpNorm<Eigen::Infinity>() <= 1e-12 * scale) {
+      out.ok = true;
+      return out;
+    }
+  }
+  out.message = "static equilibrium: Newton did not converge in 60 iterations";
+  return out;
+}
+
+}  // namespace geardyn::internal

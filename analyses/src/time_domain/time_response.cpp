@@ -1,0 +1,506 @@
+/// @file
+/// @brief SimulateSteadyState, SimulateSweep, SimulateSpeeds and SolveTimeDomainStatic: the
+/// period loop with steady-state detection, the energy balance per period and the recording.
+#include "geardyn/analyses/time_response.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <numbers>
+
+#include "geardyn/common/check.hpp"
+#include "geardyn/common/errors.hpp"
+#include "geardyn/system/probes.hpp"
+#include "td_steppers.hpp"
+#include "td_system.hpp"
+
+namespace geardyn {
+namespace {
+
+using internal::TdScales;
+using internal::TdSystem;
+using internal::TdWorkspace;
+
+/// Worse of two statuses (kSuccess < kToleranceNotMet < kNotConverged < kNumericalIssue).
+Status Worse(Status a, Status b) {
+  auto rank = [](Status s) {
+    switch (s) {
+      case Status::kSuccess:
+        return 0;
+      case Status::kToleranceNotMet:
+        return 1;
+      case Status::kNotConverged:
+        return 2;
+      case Status::kNumericalIssue:
+        return 3;
+    }
+    return 3;
+  };
+  return rank(a) >= rank(b) ? a : b;
+}
+
+/// Error scales from a reference state: c_i = max(|x_i|, 1e-3·max|x|) (1e-6 without any
+/// deflection), velocities ω_m·c_i.
+TdScales MakeScales(const VectorX& x, double omega) {
+  TdScales s;
+  double top = x.lpNorm<Eigen::Infinity>();
+  if (!(top > 0.0)) top = 1e-6;
+  s.x = x.cwiseAbs().cwiseMax(1e-3 * top);
+  s.v = omega * s.x;
+  return s;
+}
+
+/// Running statistics of a sampled signal.
+struct Stats {
+  double sum = 0.0, sum2 = 0.0, lo = std::numeric_limits<double>::infinity(),
+         hi = -std::numeric_limits<double>::infinity();
+  long count = 0;
+  void Add(double v) {
+    sum += v;
+    sum2 += v * v;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+    ++count;
+  }
+  double Mean() const { return count > 0 ? sum / static_cast<double>(count) : 0.0; }
+  /// RMS of v − mean.
+  double Rms() const {
+    if (count == 0) return 0.0;
+    const double m = Mean();
+    return std::sqrt(std::max(sum2 / static_cast<double>(count) - m * m, 0.0));
+  }
+};
+
+/// One run at one speed on an existing TdSystem (see SimulateSteadyState).
+TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& options,
+                 const TimeProgress& progress, const std::atomic<bool>* cancel) {
+  const auto start = std::chrono::steady_clock::now();
+  TimeResponse out;
+  out.mesh_frequency_hz = f_m;
+  Summary& summary = out.summary;
+  const SystemModel& model = sys.model;
+  const int n = sys.n;
+  const int num_meshes = model.num_meshes();
+  const double omega = 2.0 * std::numbers::pi * f_m;
+  const double theta0 = options.initial_phase;
+  const TimeIntegrationOptions& io = options.integration;
+  const SteadyStateOptions& so = options.steady;
+  if (sys.unbalanced_fraction > 1e-8) {
+    summary.warnings.push_back(
+        "the constant load has a part along the rigid-body modes (relative size " +
+        std::to_string(sys.unbalanced_fraction) +
+        ") that the supports cannot react; it was removed (the train would accelerate)");
+  }
+  auto finish = [&]() {
+    summary.wall_time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+  };
+
+  // Initial state.
+  TdWorkspace ws(sys);
+  VectorX x0(n), v0 = VectorX::Zero(n);
+  VectorX reference;
+  if (options.start_from_static) {
+    const internal::TdStatic st = internal::SolveStatic(sys, ws, theta0);
+    if (!st.ok) {
+      summary.status = Status::kNumericalIssue;
+      summary.message = st.message;
+      return finish();
+    }
+    x0 = st.x;
+    reference = st.x;
+  } else {
+    GEARDYN_THROW_UNLESS(options.initial_state.size() == 2 * n,
+                         "initial_state: must have 2·(num_dofs + internal) = "
+                             << 2 * n << " entries, got " << options.initial_state.size());
+    x0 = options.initial_state.head(n);
+    v0 = options.initial_state.tail(n);
+    reference = x0;
+  }
+
+  // kAuto: explicit unless the highest frequency times the accuracy step is large (stiff).
+  const double mesh_period = 2.0 * std::numbers::pi / omega;
+  TimeIntegrator method = io.integrator;
+  if (method == TimeIntegrator::kAuto) {
+    const double w_max = internal::EstimateHighestFrequency(sys, ws, theta0, x0);
+    const double ratio = w_max * mesh_period / io.samples_per_period;
+    method = ratio < io.auto_stiffness_limit ? TimeIntegrator::kRungeKutta
+                                             : TimeIntegrator::kGeneralizedAlpha;
+    summary.counters["auto_stiffness_ratio_x1000"] = static_cast<long>(1000.0 * ratio);
+  }
+  out.integrator_used = method;
+  auto stepper =
+      internal::MakeStepper(method, sys, io, MakeScales(reference, omega), omega, theta0);
+  stepper->Reset(0.0, x0, v0);
+
+  const std::int64_t P = model.period_meshes() * so.period_multiple;
+  const double period = mesh_period * static_cast<double>(P);
+  const long samples = static_cast<long>(io.samples_per_period) * P;
+  VectorX dte(num_meshes);
+  std::vector<double> prev_rms(static_cast<std::size_t>(num_meshes), -1.0);
+  VectorX prev_x = x0, prev_v = v0;
+  int consecutive = 0;
+  bool steady = false;
+  bool failed = false;
+  long period_index = 0;
+
+  auto record_meta = [&]() {
+    out.steps = stepper->steps();
+    out.events = stepper->events();
+    summary.counters["steps"] = stepper->steps();
+    summary.counters["rejected_steps"] = stepper->rejected();
+    summary.counters["events"] = stepper->events();
+    summary.counters["force_evaluations"] = stepper->evaluations();
+    out.final_state.resize(2 * n);
+    out.final_state << stepper->x(), stepper->v();
+    out.final_phase = stepper->Phase(stepper->t());
+    for (const EnergyBalancePeriod& e : out.energy) {
+      if (!(e.relative_error <= out.max_energy_error)) out.max_energy_error = e.relative_error;
+    }
+    summary.error_estimate = out.max_energy_error;
+  };
+
+  // Integrates one period; when `histories` is set, appends the samples to the output.
+  auto integrate_period = [&](bool histories, std::vector<Stats>* stats,
+                              std::vector<long>* loss) -> bool {
+    const double t_begin = static_cast<double>(period_index) * period;
+    ws.force.setZero();
+    internal::EvalForces(sys, ws, stepper->Phase(stepper->t()), omega, stepper->x(), stepper->v(),
+                         false);
+    const double s_begin = internal::StoredEnergy(sys, ws, stepper->x(), stepper->v());
+    const VectorX x_begin = stepper->x();
+    stepper->ResetQuadrature();
+    for (long s = 1; s <= samples; ++s) {
+      if (!stepper->AdvanceTo(t_begin + period * static_cast<double>(s) / static_cast<double>(samples))) {
+        summary.status = Status::kNumericalIssue;
+        summary.message = stepper->message();
+        return false;
+      }
+      const double t = stepper->t();
+      const double theta = stepper->Phase(t);
+      EvalMeshDte(model, theta, stepper->x().head(sys.num_dofs), dte);
+      for (int k = 0; k < num_meshes; ++k) {
+        (*stats)[static_cast<std::size_t>(k)].Add(dte(k));
+      }
+      if (!dte.allFinite()) {
+        summary.status = Status::kNumericalIssue;
+        summary.message = "time integration: non-finite DTE at t = " + std::to_string(t) + " s";
+        return false;
+      }
+      if (!histories && loss == nullptr) continue;
+      internal::EvalForces(sys, ws, theta, omega, stepper->x(), stepper->v(), false);
+      for (int k = 0; k < num_meshes; ++k) {
+        const auto kk = static_cast<std::size_t>(k);
+        if (ws.contacts[kk] == 0) ++(*loss)[kk];
+      }
+      if (!histories) continue;
+      const Eigen::Index at = out.time.size();
+      out.time.conservativeResize(at + 1);
+      out.time(at) = t;
+      for (int k = 0; k < num_meshes; ++k) {
+        MeshTimeHistory& h = out.meshes[static_cast<std::size_t>(k)];
+        h.dte.conservativeResize(at + 1);
+        h.dte(at) = dte(k);
+        const internal::TdMeshTerm& term = sys.terms[static_cast<std::size_t>(k)];
+        if (term.kind != internal::TdMeshTerm::Kind::kNonlinear) {
+          h.force.conservativeResize(at + 1);
+          h.force(at) = ws.force_eta[static_cast<std::size_t>(k)];
+        } else if (at % io.channel_decimation == 0) {
+          const VectorX& ch = ws.core_out[static_cast<std::size_t>(k)].channels;
+          h.channels.conservativeResize(ch.size(), h.channels.cols() + 1);
+          h.channels.col(h.channels.cols() - 1) = ch;
+        }
+      }
+      if (io.record_element_forces) {
+        for (std::size_t e = 0; e < model.elements().size(); ++e) {
+          MatrixX& f = out.element_forces[e];
+          f.conservativeResize(f.rows(), at + 1);
+          VectorX fe(f.rows());
+          CalcElementForce(model, ElementIndex(static_cast<int>(e)),
+                           stepper->x().head(sys.num_dofs), stepper->v().head(sys.num_dofs), fe);
+          f.col(at) = fe;
+        }
+      }
+    }
+    // Energy balance of the period: W = f0ᵀΔx + ∫ΣP, ΔS, D.
+    internal::EvalForces(sys, ws, stepper->Phase(stepper->t()), omega, stepper->x(), stepper->v(),
+                         false);
+    EnergyBalancePeriod e;
+    e.stored_change = internal::StoredEnergy(sys, ws, stepper->x(), stepper->v()) - s_begin;
+    e.input_work = sys.load0.dot(stepper->x() - x_begin) + stepper->phase_work();
+    e.dissipated = stepper->dissipated();
+    const double scale = std::max({std::abs(e.input_work), std::abs(e.stored_change),
+                                   std::abs(e.dissipated), 1e-12 * std::abs(s_begin)});
+    e.relative_error =
+        scale > 0.0 ? std::abs(e.input_work - e.stored_change - e.dissipated) / scale : 0.0;
+    out.energy.push_back(e);
+    ++period_index;
+    return true;
+  };
+
+  // Transient: period by period until steady.
+  for (int p = 0; p < so.max_periods; ++p) {
+    if (cancel != nullptr && cancel->load()) {
+      summary.status = Status::kNotConverged;
+      summary.message = "cancelled";
+      failed = true;
+      break;
+    }
+    std::vector<Stats> stats(static_cast<std::size_t>(num_meshes));
+    if (!integrate_period(false, &stats, nullptr)) {
+      failed = true;
+      break;
+    }
+    out.periods = p + 1;
+    // Period-to-period change of the state at the period start and of each mesh's DTE RMS.
+    const VectorX& x = stepper->x();
+    const VectorX& v = stepper->v();
+    const double xn = x.lpNorm<Eigen::Infinity>(), vn = v.lpNorm<Eigen::Infinity>();
+    double change = xn > 0.0 ? (x - prev_x).lpNorm<Eigen::Infinity>() / xn : 0.0;
+    if (vn > 0.0) change = std::max(change, (v - prev_v).lpNorm<Eigen::Infinity>() / vn);
+    for (int k = 0; k < num_meshes; ++k) {
+      const auto kk = static_cast<std::size_t>(k);
+      const double rms = stats[kk].Rms();
+      const double denom = std::max(rms, 1e-9 * std::abs(stats[kk].Mean()));
+      if (prev_rms[kk] < 0.0) {
+        change = std::max(change, 1.0);
+      } else if (denom > 0.0) {
+        change = std::max(change, std::abs(rms - prev_rms[kk]) / denom);
+      }
+      prev_rms[kk] = rms;
+    }
+    if (!std::isfinite(change)) {
+      summary.status = Status::kNumericalIssue;
+      summary.message =
+          "time integration: non-finite state at the end of period " + std::to_string(p + 1);
+      failed = true;
+      break;
+    }
+    prev_x = x;
+    prev_v = v;
+    consecutive = (p + 1 >= so.min_periods && change < so.tolerance) ? consecutive + 1 : 0;
+    if (progress) {
+      progress(static_cast<double>(p + 1) / so.max_periods,
+               "period " + std::to_string(p + 1) + ", change " + std::to_string(change));
+    }
+    if (consecutive >= so.consecutive_periods) {
+      steady = true;
+      break;
+    }
+  }
+  if (!failed && !steady) {
+    summary.status = Status::kNotConverged;
+    summary.message = "not steady after max_periods = " + std::to_string(so.max_periods) +
+                      " periods (tolerance " + std::to_string(so.tolerance) + ")";
+  }
+
+  // Recording (also after a non-steady end, so that the last periods can be inspected; never
+  // after a numerical failure).
+  if (!failed) {
+    out.meshes.resize(static_cast<std::size_t>(num_meshes));
+    for (int k = 0; k < num_meshes; ++k) {
+      MeshTimeHistory& h = out.meshes[static_cast<std::size_t>(k)];
+      h.name = model.meshes()[static_cast<std::size_t>(k)].name;
+      const internal::TdMeshTerm& term = sys.terms[static_cast<std::size_t>(k)];
+      if (term.kind == internal::TdMeshTerm::Kind::kNonlinear) {
+        h.channel_names = term.nonlinear->channel_names();
+        h.channels.resize(static_cast<Eigen::Index>(h.channel_names.size()), 0);
+      }
+    }
+    if (io.record_element_forces) {
+      for (const SystemElement& e : model.elements()) {
+        out.element_forces.emplace_back(static_cast<Eigen::Index>(e.dofs.size()), 0);
+      }
+    }
+    std::vector<Stats> stats(static_cast<std::size_t>(num_meshes));
+    std::vector<long> loss(static_cast<std::size_t>(num_meshes), 0);
+    for (int p = 0; p < so.record_periods; ++p) {
+      if (!integrate_period(true, &stats, &loss)) break;
+    }
+    for (int k = 0; k < num_meshes; ++k) {
+      const auto kk = static_cast<std::size_t>(k);
+      MeshTimeHistory& h = out.meshes[kk];
+      h.mean_dte = stats[kk].Mean();
+      h.rms_dte = stats[kk].Rms();
+      h.peak_to_peak_dte = stats[kk].count > 0 ? stats[kk].hi - stats[kk].lo : 0.0;
+      h.contact_loss_fraction =
+          stats[kk].count > 0 ? static_cast<double>(loss[kk]) / static_cast<double>(stats[kk].count) : 0.0;
+    }
+  }
+  record_meta();
+  out.steady = summary.ok() && steady ? SteadyVerdict::kSteady : SteadyVerdict::kUndetermined;
+  if (summary.ok() && !(out.max_energy_error <= 1e-4)) {
+    summary.warnings.push_back("energy balance error " + std::to_string(out.max_energy_error) +
+                               " of a period's work exceeds 1e-4: tighten the tolerances");
+  }
+  return finish();
+}
+
+void CheckFrequency(double f, const char* what) {
+  GEARDYN_THROW_UNLESS(std::isfinite(f) && f > 0.0,
+                       what << ": mesh frequency must be finite and > 0 Hz, got " << f);
+}
+
+void CheckModel(const SystemModel& model, const char* what) {
+  GEARDYN_THROW_UNLESS(model.num_meshes() > 0, what << ": the model has no meshes");
+}
+
+}  // namespace
+
+TimeResponse SimulateSteadyState(const SystemModel& model, double mesh_frequency_hz,
+                                 const TimeResponseOptions& options, const TimeProgress& progress,
+                                 const std::atomic<bool>* cancel) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InvalidInput("SimulateSteadyState: " + why);
+  CheckFrequency(mesh_frequency_hz, "SimulateSteadyState");
+  CheckModel(model, "SimulateSteadyState");
+  const TdSystem sys(model);
+  return Run(sys, mesh_frequency_hz, options, progress, cancel);
+}
+
+TimeSweep SimulateSweep(const SystemModel& model, const std::vector<double>& frequencies_hz,
+                        const TimeSweepOptions& options, const TimeProgress& progress,
+                        const std::atomic<bool>* cancel) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InvalidInput("SimulateSweep: " + why);
+  CheckModel(model, "SimulateSweep");
+  GEARDYN_THROW_UNLESS(!frequencies_hz.empty(), "SimulateSweep: frequencies_hz is empty");
+  for (std::size_t i = 0; i < frequencies_hz.size(); ++i) {
+    CheckFrequency(frequencies_hz[i], "SimulateSweep");
+    GEARDYN_THROW_UNLESS(i == 0 || frequencies_hz[i] > frequencies_hz[i - 1],
+                         "SimulateSweep: frequencies_hz must be strictly increasing (entry "
+                             << i << " = " << frequencies_hz[i] << ")");
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const TdSystem sys(model);
+  TimeSweep sweep;
+  const int count = static_cast<int>(frequencies_hz.size());
+  const int total = count * ((options.up ? 1 : 0) + (options.down ? 1 : 0));
+  int done = 0;
+  VectorX carried;  // final state of the last point (the up branch hands it to the down one)
+  double carried_phase = options.response.initial_phase;
+  long steps = 0, events = 0;
+  for (SweepBranch branch : {SweepBranch::kUp, SweepBranch::kDown}) {
+    if ((branch == SweepBranch::kUp && !options.up) ||
+        (branch == SweepBranch::kDown && !options.down))
+      continue;
+    for (int i = 0; i < count; ++i) {
+      if (cancel != nullptr && cancel->load()) {
+        sweep.summary.status = Worse(sweep.summary.status, Status::kNotConverged);
+        sweep.summary.message = "cancelled";
+        sweep.summary.counters["points"] = static_cast<long>(sweep.points.size());
+        return sweep;
+      }
+      const int idx = branch == SweepBranch::kUp ? i : count - 1 - i;
+      const double f = frequencies_hz[static_cast<std::size_t>(idx)];
+      TimeResponseOptions o = options.response;
+      o.integration.record_element_forces = false;
+      if (carried.size() > 0) {
+        o.start_from_static = false;
+        o.initial_state = carried;
+        o.initial_phase = carried_phase;
+      }
+      const TimeResponse r = Run(sys, f, o, {}, cancel);
+      TimeSweepPoint pt;
+      pt.mesh_frequency_hz = f;
+      pt.branch = branch;
+      for (const MeshTimeHistory& h : r.meshes) {
+        pt.rms_dte.push_back(h.rms_dte);
+        pt.mean_dte.push_back(h.mean_dte);
+        pt.peak_to_peak_dte.push_back(h.peak_to_peak_dte);
+        pt.contact_loss_fraction.push_back(h.contact_loss_fraction);
+      }
+      pt.periods = r.periods;
+      pt.steady = r.steady;
+      pt.max_energy_error = r.max_energy_error;
+      pt.status = r.summary.status;
+      pt.message = r.summary.message;
+      sweep.points.push_back(pt);
+      steps += r.steps;
+      events += r.events;
+      ++done;
+      if (progress) {
+        progress(static_cast<double>(done) / total,
+                 std::string(ToString(branch)) + " " + std::to_string(f) + " Hz");
+      }
+      if (!r.summary.ok()) {
+        sweep.summary.status = Worse(sweep.summary.status, r.summary.status);
+        sweep.summary.warnings.push_back(std::string(ToString(branch)) + " branch stopped at " +
+                                         std::to_string(f) + " Hz: " + r.summary.message);
+        if (sweep.summary.message.empty()) sweep.summary.message = r.summary.message;
+        carried.resize(0);  // the next branch starts afresh
+        carried_phase = options.response.initial_phase;
+        if (r.summary.message == "cancelled") return sweep;
+        break;
+      }
+      carried = r.final_state;
+      carried_phase = r.final_phase;
+    }
+  }
+  sweep.summary.counters["steps"] = steps;
+  sweep.summary.counters["events"] = events;
+  sweep.summary.counters["points"] = static_cast<long>(sweep.points.size());
+  sweep.summary.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return sweep;
+}
+
+std::vector<TimeResponse> SimulateSpeeds(const SystemModel& model,
+                                         const std::vector<double>& frequencies_hz,
+                                         const TimeResponseOptions& options, int threads,
+                                         const TimeProgress& progress,
+                                         const std::atomic<bool>* cancel) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InvalidInput("SimulateSpeeds: " + why);
+  CheckModel(model, "SimulateSpeeds");
+  GEARDYN_THROW_UNLESS(threads >= 0, "SimulateSpeeds: threads must be ≥ 0, got " << threads);
+  for (double f : frequencies_hz) CheckFrequency(f, "SimulateSpeeds");
+  const TdSystem sys(model);  // immutable, shared; every run has its own workspaces
+  const int count = static_cast<int>(frequencies_hz.size());
+  std::vector<TimeResponse> out(static_cast<std::size_t>(count));
+  std::exception_ptr error;
+  std::atomic<int> done{0};
+  const int num_threads = threads > 0 ? threads : std::max(1, omp_get_max_threads());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(num_threads)
+  for (int i = 0; i < count; ++i) {
+    try {
+      out[static_cast<std::size_t>(i)] =
+          Run(sys, frequencies_hz[static_cast<std::size_t>(i)], options, {}, cancel);
+    } catch (...) {
+#pragma omp critical(geardyn_time_speeds_error)
+      if (!error) error = std::current_exception();
+    }
+    const int d = ++done;
+    if (progress && omp_get_thread_num() == 0) {
+      progress(static_cast<double>(d) / count,
+               std::to_string(d) + " of " + std::to_string(count) + " speeds");
+    }
+  }
+  if (error) std::rethrow_exception(error);
+  return out;
+}
+
+TimeDomainStatic SolveTimeDomainStatic(const SystemModel& model, double theta0) {
+  GEARDYN_THROW_UNLESS(std::isfinite(theta0),
+                       "SolveTimeDomainStatic: theta0 must be finite, got " << theta0);
+  CheckModel(model, "SolveTimeDomainStatic");
+  const TdSystem sys(model);
+  TdWorkspace ws(sys);
+  const internal::TdStatic st = internal::SolveStatic(sys, ws, theta0);
+  TimeDomainStatic out;
+  out.state = st.x;
+  out.iterations = st.iterations;
+  if (!st.ok) {
+    out.summary.status = Status::kNotConverged;
+    out.summary.message = st.message;
+  }
+  out.summary.counters["iterations"] = st.iterations;
+  return out;
+}
+
+}  // namespace geardyn
