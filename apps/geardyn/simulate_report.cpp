@@ -67,7 +67,8 @@ TimeSweepPoint ToSweepPoint(const TimeResponse& r) {
   }
   p.periods = r.periods;
   p.steady = r.steady;
-  p.max_energy_error = r.max_energy_error;
+  // No balance without an integrated period (a run that failed before its first one).
+  p.max_energy_error = r.energy.empty() ? std::nan("") : r.max_energy_error;
   p.status = r.summary.status;
   p.message = r.summary.message;
   return p;
@@ -123,19 +124,21 @@ json MakeSimulateReport(const SimulateRunInfo& info, const std::vector<std::stri
   report["points"] = rows;
   if (single != nullptr) {
     const Summary& s = single->summary;
-    report["run"] = {{"integrator", ToString(single->integrator_used)},
-                     {"steps", single->steps},
-                     {"events", single->events},
-                     {"periods", single->periods},
-                     {"steady", ToString(single->steady)},
-                     {"max_energy_error", JsonNumber(single->max_energy_error)},
-                     {"summary",
-                      {{"status", StatusName(s.status)},
-                       {"message", s.message},
-                       {"error_estimate", JsonNumber(s.error_estimate)},
-                       {"wall_time_s", s.wall_time_s},
-                       {"counters", s.counters},
-                       {"warnings", s.warnings}}}};
+    report["run"] = {
+        {"integrator", ToString(single->integrator_used)},
+        {"steps", single->steps},
+        {"events", single->events},
+        {"periods", single->periods},
+        {"steady", ToString(single->steady)},
+        {"max_energy_error",
+         single->energy.empty() ? json(nullptr) : JsonNumber(single->max_energy_error)},
+        {"summary",
+         {{"status", StatusName(s.status)},
+          {"message", s.message},
+          {"error_estimate", JsonNumber(s.error_estimate)},
+          {"wall_time_s", s.wall_time_s},
+          {"counters", s.counters},
+          {"warnings", s.warnings}}}};
   }
   report["wall_time_s"] = info.wall_time_s;
   return report;
@@ -174,8 +177,9 @@ std::string FormatSimulateText(const json& report) {
   if (names.size() > 1) out << "(DTE of the first mesh, " << first << "; all meshes in --json)\n";
   if (report.contains("run")) {
     const auto& run = report["run"];
-    out << "integrator used: " << run["integrator"].get<std::string>() << ", "
-        << run["steps"].get<long>() << " steps, " << run["events"].get<long>()
+    const bool ran = run["steps"].get<long>() > 0;
+    out << "integrator used: " << (ran ? run["integrator"].get<std::string>() : "none (no step)")
+        << ", " << run["steps"].get<long>() << " steps, " << run["events"].get<long>()
         << " located contact events, " << Num(run["summary"]["wall_time_s"].get<double>())
         << " s\n";
   }
