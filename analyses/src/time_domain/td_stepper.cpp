@@ -159,6 +159,7 @@ bool TdStepper::LocateEvent() {
     message_ = "time integration: re-step failed while locating a contact switch";
     return false;
   }
+  last_event_time_ = t_ + trial_h_;
   return true;
 }
 

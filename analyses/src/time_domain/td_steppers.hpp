@@ -4,6 +4,7 @@
 /// quadrature of the balance (time_response.hpp).
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -44,6 +45,8 @@ class TdStepper {
   long steps() const { return steps_; }
   long rejected() const { return rejected_; }
   long events() const { return events_; }
+  /// End of the step that crossed the last located switching zero [s] (NaN before any).
+  double last_event_time() const { return last_event_time_; }
   long evaluations() const { return evaluations_; }
   const std::string& message() const { return message_; }
   /// θ at local time t [rad].
@@ -82,6 +85,7 @@ class TdStepper {
   double phase_work_ = 0.0, dissipated_ = 0.0;
   double h_ = 0.0, max_step_ = 0.0;
   long steps_ = 0, rejected_ = 0, events_ = 0, evaluations_ = 0;
+  double last_event_time_ = std::numeric_limits<double>::quiet_NaN();
   std::string message_;
 
  private:

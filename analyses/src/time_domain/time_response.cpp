@@ -176,7 +176,8 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
     const VectorX x_begin = stepper->x();
     stepper->ResetQuadrature();
     for (long s = 1; s <= samples; ++s) {
-      if (!stepper->AdvanceTo(t_begin + period * static_cast<double>(s) / static_cast<double>(samples))) {
+      if (!stepper->AdvanceTo(t_begin +
+                              period * static_cast<double>(s) / static_cast<double>(samples))) {
         summary.status = Status::kNumericalIssue;
         summary.message = stepper->message();
         return false;
@@ -329,7 +330,8 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
       h.rms_dte = stats[kk].Rms();
       h.peak_to_peak_dte = stats[kk].count > 0 ? stats[kk].hi - stats[kk].lo : 0.0;
       h.contact_loss_fraction =
-          stats[kk].count > 0 ? static_cast<double>(loss[kk]) / static_cast<double>(stats[kk].count) : 0.0;
+          stats[kk].count > 0 ? static_cast<double>(loss[kk]) / static_cast<double>(stats[kk].count)
+                              : 0.0;
     }
   }
   record_meta();

@@ -1,0 +1,177 @@
+/// @file
+/// @brief Time integration (time_response.hpp) against closed forms: the forced steady state of
+/// the torsional gear pair (a 2-DOF system with a rigid-body mode, its relative coordinate a
+/// damped SDOF oscillator driven by the transmission error), by both integrators, with the
+/// energy balance per period; contact switches of a clearance oscillator located at their
+/// analytic times; bad input.
+#include "geardyn/analyses/time_response.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <numbers>
+
+#include "../../../analyses/src/time_domain/td_steppers.hpp"
+#include "analyses/harmonic_balance/hb_fixtures.hpp"
+#include "geardyn/common/errors.hpp"
+#include "lib/system/hand_pair.hpp"
+
+namespace geardyn {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+/// The torsional pair: δ = r1 θ1 + r2 θ2 obeys m_e δ̈ + c δ̇ + k δ = T/r1 + k ε(ω t) with
+/// m_e = 1/(r1²/I1 + r2²/I2) (equal and opposite mesh forces on the two inertias; the balanced
+/// torques T and T r2/r1 leave the rigid rotation unloaded).
+struct TorsionalCase {
+  test::HandPairParams p;
+  double torque = 150.0;  // [N·m]
+  double e1 = 2e-6;       // ε_η = e1 cos θ [m]
+  double zeta = 0.05;     // mesh damping ratio of the relative mode
+  double MeanMass() const { return 1.0 / (p.r1 * p.r1 / p.I1 + p.r2 * p.r2 / p.I2); }
+  double DampingCoefficient() const { return 2.0 * zeta * std::sqrt(p.k * MeanMass()); }
+  SystemModel Model() const {
+    const LinearMeshCore core(MeshCoreLevel::kBlankenshipSingh,
+                              ConstantCoefficient(Vector3(p.k, 0.0, p.k * p.b * p.b / 3.0)), p.b,
+                              Coefficient(test::SmoothTransmissionError(e1, 0.0, 0.0)),
+                              MeshDamping::FromCoefficient(DampingCoefficient()));
+    return test::TorsionalPair(core, torque);
+  }
+  /// Closed-form steady DTE = δ − ε: mean T/(r1 k), harmonic (D − e1) e^{iθ},
+  /// D = k e1/(k − m_e ω² + i c ω).
+  double Mean() const { return torque / (p.r1 * p.k); }
+  double Rms(double f_m) const {
+    const double w = 2.0 * kPi * f_m;
+    const std::complex<double> D =
+        p.k * e1 / std::complex<double>(p.k - MeanMass() * w * w, DampingCoefficient() * w);
+    return std::abs(D - e1) / std::sqrt(2.0);
+  }
+};
+
+void CheckSteadyState(TimeIntegrator method, double f_m, double rel_tol, double tol) {
+  const TorsionalCase c;
+  TimeResponseOptions o;
+  o.integration.integrator = method;
+  o.integration.relative_tolerance = rel_tol;
+  o.integration.absolute_tolerance = rel_tol;
+  o.steady.tolerance = 1e-9;
+  const TimeResponse r = SimulateSteadyState(c.Model(), f_m, o);
+  ASSERT_TRUE(r.summary.ok()) << r.summary.BriefReport();
+  EXPECT_EQ(r.steady, SteadyVerdict::kSteady);
+  EXPECT_EQ(r.integrator_used, method);
+  ASSERT_EQ(r.meshes.size(), 1u);
+  EXPECT_NEAR(r.meshes[0].mean_dte, c.Mean(), tol * c.Mean()) << ToString(method);
+  EXPECT_NEAR(r.meshes[0].rms_dte, c.Rms(f_m), tol * c.Rms(f_m)) << ToString(method);
+  EXPECT_EQ(r.meshes[0].contact_loss_fraction, 0.0);
+  EXPECT_LT(r.max_energy_error, 1e-4) << ToString(method);
+  EXPECT_GT(r.periods, 3);
+  EXPECT_EQ(r.time.size(), o.integration.samples_per_period);
+}
+
+TEST(TimeResponse, TorsionalPairSteadyStateRungeKutta) {
+  // Below, near and above the resonance f_n = √(k/m_e)/2π ≈ 4.6 kHz.
+  for (double f : {1500.0, 4500.0, 8000.0}) {
+    CheckSteadyState(TimeIntegrator::kRungeKutta, f, 1e-10, 1e-6);
+  }
+}
+
+TEST(TimeResponse, TorsionalPairSteadyStateGeneralizedAlpha) {
+  for (double f : {1500.0, 4500.0, 8000.0}) {
+    CheckSteadyState(TimeIntegrator::kGeneralizedAlpha, f, 1e-9, 1e-4);
+  }
+}
+
+/// A clearance oscillator: the torsional pair with a one-slice core (contact only while
+/// δ > 0), no load, no damping, started open at δ = −d with δ̇ = v0. Contact closes at
+/// t1 = d/v0 and opens at t1 + π/ω_n (a half period of √(k/m_e) in contact).
+void CheckEventLocation(TimeIntegrator method) {
+  const TorsionalCase c;
+  const SliceMeshCore core(VectorX::Zero(1), ConstantCoefficient(VectorX::Constant(1, c.p.k)),
+                           c.p.b);
+  const SystemModel model = test::TorsionalPair(core, 0.0);
+  ASSERT_EQ(model.num_dofs(), 2);
+  const internal::TdSystem sys(model);
+  TimeIntegrationOptions o;
+  o.integrator = method;
+  // Generalized-α is second order: its event times are as accurate as its trajectory.
+  const bool rk = method == TimeIntegrator::kRungeKutta;
+  o.relative_tolerance = o.absolute_tolerance = rk ? 1e-10 : 1e-10;
+  const double time_tol = (rk ? 1e-8 : 1e-7) * 2.0 * kPi / (2.0 * kPi * 1000.0);
+  o.event_time_tolerance = 1e-10;
+  const double d = 1e-6, v0 = 0.01;
+  const double omega_mesh = 2.0 * kPi * 1000.0;  // only the phase; the core is constant
+  internal::TdScales scales;
+  scales.x = VectorX::Constant(2, d / c.p.r1);
+  scales.v = VectorX::Constant(2, v0 / c.p.r1);
+  auto stepper = internal::MakeStepper(method, sys, o, scales, omega_mesh, 0.0);
+  VectorX x = VectorX::Zero(2), v = VectorX::Zero(2);
+  x(0) = -d / c.p.r1;  // θ1: δ = r1 θ1 = −d
+  v(0) = v0 / c.p.r1;
+  stepper->Reset(0.0, x, v);
+  const double wn = std::sqrt(c.p.k / c.MeanMass());
+  const double t1 = d / v0, t2 = t1 + kPi / wn;
+  ASSERT_TRUE(stepper->AdvanceTo(t1 + 0.25 * kPi / wn)) << stepper->message();
+  EXPECT_EQ(stepper->events(), 1);
+  EXPECT_NEAR(stepper->last_event_time(), t1, time_tol) << ToString(method);
+  ASSERT_TRUE(stepper->AdvanceTo(t2 + 0.25 * kPi / wn)) << stepper->message();
+  EXPECT_EQ(stepper->events(), 2);
+  EXPECT_NEAR(stepper->last_event_time(), t2, time_tol) << ToString(method);
+  // Elastic rebound: δ̇ = −v0 after the contact.
+  const double rate = c.p.r1 * stepper->v()(0) + c.p.r2 * stepper->v()(1);
+  EXPECT_NEAR(rate, -v0, 1e-6 * v0);
+}
+
+TEST(TimeResponse, ClearanceOscillatorEventsRungeKutta) {
+  CheckEventLocation(TimeIntegrator::kRungeKutta);
+}
+
+TEST(TimeResponse, ClearanceOscillatorEventsGeneralizedAlpha) {
+  CheckEventLocation(TimeIntegrator::kGeneralizedAlpha);
+}
+
+TEST(TimeResponse, StaticStartIsTheClosedFormDeflection) {
+  const TorsionalCase c;
+  const TimeDomainStatic st = SolveTimeDomainStatic(c.Model(), 0.0);
+  ASSERT_TRUE(st.summary.ok()) << st.summary.BriefReport();
+  // ε(0) = e1: k(δ − e1) = T/r1.
+  const double delta = c.p.r1 * st.state(0) + c.p.r2 * st.state(1);
+  EXPECT_NEAR(delta, c.Mean() + c.e1, 1e-9 * c.Mean());
+}
+
+TEST(TimeResponse, BadInputIsRefused) {
+  const TorsionalCase c;
+  const SystemModel model = c.Model();
+  TimeResponseOptions o;
+  EXPECT_THROW(SimulateSteadyState(model, 0.0, o), InvalidInput);
+  EXPECT_THROW(SimulateSteadyState(model, std::nan(""), o), InvalidInput);
+  o.integration.relative_tolerance = 0.5;
+  EXPECT_THROW(SimulateSteadyState(model, 1000.0, o), InvalidInput);
+  o = {};
+  o.steady.max_periods = 0;
+  EXPECT_THROW(SimulateSteadyState(model, 1000.0, o), InvalidInput);
+  o = {};
+  o.start_from_static = false;
+  o.initial_state = VectorX::Zero(3);
+  EXPECT_THROW(SimulateSteadyState(model, 1000.0, o), InvalidInput);
+  TimeSweepOptions s;
+  EXPECT_THROW(SimulateSweep(model, {2000.0, 1000.0}, s), InvalidInput);
+  s.up = s.down = false;
+  EXPECT_THROW(SimulateSweep(model, {1000.0, 2000.0}, s), InvalidInput);
+}
+
+TEST(TimeResponse, MaxPeriodsGivesNoVerdict) {
+  const TorsionalCase c;
+  TimeResponseOptions o;
+  o.steady.max_periods = 2;
+  o.steady.tolerance = 1e-12;
+  const TimeResponse r = SimulateSteadyState(c.Model(), 4500.0, o);
+  EXPECT_EQ(r.summary.status, Status::kNotConverged);
+  EXPECT_EQ(r.steady, SteadyVerdict::kUndetermined);
+  EXPECT_EQ(r.periods, 2);
+  EXPECT_EQ(r.final_state.size(), 4);  // what was computed is kept
+}
+
+}  // namespace
+}  // namespace geardyn
