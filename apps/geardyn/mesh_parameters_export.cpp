@@ -80,11 +80,10 @@ std::string FormatMeshParametersToml(const MeshParameterSamples& samples,
   const Columns columns = MakeColumns(samples);
   std::ostringstream out;
   for (const std::string& line : comment) out << "# " << line << "\n";
-  out << "# Paste below the [[mesh]] table named \"" << samples.mesh
-      << "\" (it replaces the contact lines: drop model = \"slices\", stiffness_per_length,\n"
-         "# [mesh.modifications] and [mesh.errors] there), or pass the one-line form of\n"
-         "# mesh_parameters_set.txt as --set. "
-      << samples.stiffness.size() << " samples over one mesh cycle, theta_s = 2 pi s / "
+  out << "# Paste below the [[mesh]] table named \"" << samples.mesh << "\"; it replaces the\n"
+      << "# contact lines: drop model = \"slices\", stiffness_per_length, [mesh.modifications]\n"
+      << "# and [mesh.errors] there. One-line --set form: mesh_parameters_set.txt.\n"
+      << "# " << samples.stiffness.size() << " samples over one mesh cycle, theta_s = 2 pi s / "
       << samples.stiffness.size() << ".\n";
   out << "[mesh.parameters]\nform = \"table\"\n";
   for (const auto& [key, values] : columns) out << key << " = " << Array(values, true) << "\n";

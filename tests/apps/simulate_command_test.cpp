@@ -4,7 +4,9 @@
 // branches, which agree where the steady state is unique (LTV); a run that fails (a tiny
 // --max-periods) keeps its files.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -48,6 +50,7 @@ std::filesystem::path OutDir(const std::string& name) {
   const std::filesystem::path dir =
       std::filesystem::path(GEARDYN_BINARY_DIR) / "test_output" / "simulate_command_test" / name;
   std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir.parent_path());
   return dir;
 }
 
@@ -183,6 +186,34 @@ TEST(SimulateCommandTest, FailedRunKeepsItsFiles) {
   const std::vector<std::string> energy = ReadLines(dir / "simulate_energy.csv");
   ASSERT_GE(energy.size(), 1u);
   EXPECT_EQ(energy[0], "period,input_work_j,stored_change_j,dissipated_j,relative_error");
+}
+
+// A user's Ctrl-C: the real binary gets SIGINT one second into a run that cannot become steady
+// (steady tolerance 1e-14, many periods); it must finish its files, say so and exit with 130.
+TEST(SimulateCommandTest, InterruptWritesTheResultsSoFarAndExits130) {
+  const std::filesystem::path binary =
+      std::filesystem::path(GEARDYN_BINARY_DIR) / "apps" / "geardyn";
+  ASSERT_TRUE(std::filesystem::exists(binary)) << binary;
+  if (std::system("timeout --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "no timeout(1)";
+  const std::filesystem::path dir = OutDir("interrupted");
+  const std::string command = "timeout --preserve-status -s INT 1 " + binary.string() +
+                              " simulate builtin:helical-pair --set "
+                              "mesh.pinion-wheel.damping_ratio=0.001 --steady-tolerance 1e-14 "
+                              "--max-periods 10000000 --out " +
+                              dir.string() + " > " + (dir.string() + ".out") + " 2> " +
+                              (dir.string() + ".err");
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status)) << command;
+  EXPECT_EQ(WEXITSTATUS(status), kExitInterrupted);
+  const std::vector<std::string> err = ReadLines(dir.string() + ".err");
+  ASSERT_FALSE(err.empty());
+  EXPECT_NE(err.back().find("interrupted (SIGINT)"), std::string::npos) << err.back();
+  std::ifstream json_file(dir / "simulate.json");
+  const nlohmann::json report = nlohmann::json::parse(json_file);
+  EXPECT_EQ(report["interrupted"], true);
+  EXPECT_NE(report["status"], "success");
+  EXPECT_TRUE(std::filesystem::exists(dir / "simulate_dte.csv"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "simulate_energy.csv"));
 }
 
 }  // namespace
