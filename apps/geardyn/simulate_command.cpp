@@ -380,6 +380,7 @@ int RunSimulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) 
   std::vector<HbOverlay> overlays;
   std::unique_ptr<TimeResponse> single;
   std::unique_ptr<SystemModel> single_model;
+  std::vector<std::pair<double, Summary>> summaries;
   const InterruptScope interrupt_scope;
   for (const double torque : torques) {
     if (g_cancel.load()) break;
@@ -402,6 +403,7 @@ int RunSimulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) 
                       r.steps, r.events};
       points.push_back(p);
       for (const std::string& w : r.summary.warnings) warnings.push_back(w);
+      summaries.emplace_back(torque, r.summary);
       if (torques.size() == 1) {
         single = std::make_unique<TimeResponse>(std::move(r));
         single_model = std::make_unique<SystemModel>(built.model);
@@ -429,6 +431,7 @@ int RunSimulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) 
         points.push_back({torque, ToString(p.branch), p, "", -1, -1});
       }
       for (const std::string& w : sweep.summary.warnings) warnings.push_back(w);
+      summaries.emplace_back(torque, sweep.summary);
     }
     if (o.overlay_hb && !g_cancel.load()) {
       overlays.push_back(ComputeOverlay(o, scene_t, torque, frequencies, &warnings, err));
@@ -439,7 +442,7 @@ int RunSimulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) 
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   const nlohmann::json report =
-      MakeSimulateReport(info, mesh_names, points, warnings, single.get());
+      MakeSimulateReport(info, mesh_names, points, warnings, single.get(), summaries);
   const std::string json_text = report.dump(2) + "\n";
   out << (o.scene.json ? json_text : FormatSimulateText(report));
   if (!o.scene.out_dir.empty()) {

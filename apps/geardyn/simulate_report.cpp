@@ -76,7 +76,8 @@ TimeSweepPoint ToSweepPoint(const TimeResponse& r) {
 
 json MakeSimulateReport(const SimulateRunInfo& info, const std::vector<std::string>& mesh_names,
                         const std::vector<SimulatePoint>& points,
-                        const std::vector<std::string>& warnings, const TimeResponse* single) {
+                        const std::vector<std::string>& warnings, const TimeResponse* single,
+                        const std::vector<std::pair<double, Summary>>& summaries) {
   json report;
   report["scene"] = info.scene;
   report["mode"] = ToString(info.mode);
@@ -140,6 +141,16 @@ json MakeSimulateReport(const SimulateRunInfo& info, const std::vector<std::stri
           {"counters", s.counters},
           {"warnings", s.warnings}}}};
   }
+  json sets = json::array();
+  for (const auto& [torque, s] : summaries) {
+    sets.push_back({{"torque_nm", torque},
+                    {"status", StatusName(s.status)},
+                    {"message", s.message},
+                    {"error_estimate", JsonNumber(s.error_estimate)},
+                    {"wall_time_s", s.wall_time_s},
+                    {"counters", s.counters}});
+  }
+  report["summaries"] = sets;
   report["wall_time_s"] = info.wall_time_s;
   return report;
 }
@@ -180,8 +191,16 @@ std::string FormatSimulateText(const json& report) {
     const bool ran = run["steps"].get<long>() > 0;
     out << "integrator used: " << (ran ? run["integrator"].get<std::string>() : "none (no step)")
         << ", " << run["steps"].get<long>() << " steps, " << run["events"].get<long>()
-        << " located contact events, " << Num(run["summary"]["wall_time_s"].get<double>())
-        << " s\n";
+        << " located contact events, " << Num(run["summary"]["wall_time_s"].get<double>()) << " s";
+    const auto& counters = run["summary"]["counters"];
+    if (counters.contains("rejected_steps")) {
+      out << " (" << counters["rejected_steps"].get<long>() << " rejected steps";
+      if (counters.contains("force_evaluations")) {
+        out << ", " << counters["force_evaluations"].get<long>() << " force evaluations";
+      }
+      out << ")";
+    }
+    out << "\n";
   }
   out << "status: " << report["status"].get<std::string>();
   if (!report["message"].get<std::string>().empty()) {

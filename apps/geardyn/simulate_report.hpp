@@ -65,12 +65,14 @@ struct HbOverlay {
 /// rms_dte_m, peak_to_peak_dte_m, mean_dte_m, contact_loss_fraction}]}], "wall_time_s"; with
 /// `single` (one run) also "run": {integrator, steps, events, periods, steady,
 /// max_energy_error, summary: {status, message, error_estimate, wall_time_s, counters,
-/// warnings}}.
+/// warnings}}; "summaries": the library's Summary of each run set (a sweep, an independent run),
+/// [{torque_nm, status, message, error_estimate, wall_time_s, counters}].
 nlohmann::json MakeSimulateReport(const SimulateRunInfo& info,
                                   const std::vector<std::string>& mesh_names,
                                   const std::vector<SimulatePoint>& points,
                                   const std::vector<std::string>& warnings,
-                                  const TimeResponse* single = nullptr);
+                                  const TimeResponse* single = nullptr,
+                                  const std::vector<std::pair<double, Summary>>& summaries = {});
 
 /// @brief Text: one line per point (RMS and peak-to-peak DTE in µm, periods, energy error), for
 /// one run also the integrator and its step statistics, then the warnings.
