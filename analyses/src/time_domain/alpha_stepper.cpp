@@ -35,6 +35,8 @@ class AlphaStepper final : public TdStepper {
     dissipation_ = DissipationPower(sys_, ws_, v_);
   }
 
+  void OnRestart() override { OnReset(); }
+
   double TrialStep(double h) override {
     constexpr double kInf = std::numeric_limits<double>::infinity();
     trial_h_ = h;

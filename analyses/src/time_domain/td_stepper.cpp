@@ -69,9 +69,20 @@ bool TdStepper::AdvanceTo(double t1) {
                  " reached at t = " + std::to_string(t_) + " s";
       return false;
     }
-    double h = std::min({h_, max_step_, t1 - t_});
-    // Do not leave a sliver: stretch to t1 when the rest is within 10 % of a step.
-    if (t1 - t_ - h < 0.1 * h) h = t1 - t_;
+    // A jump of a piecewise-constant coefficient ahead: step to just before it, then across.
+    double target = t1;
+    if (sys_.has_breaks) {
+      double margin = 0.0;
+      const double tb = sys_.NextBreakTime(t_, theta0_, omega_, &margin);
+      if (tb - margin - t_ <= t_tol) {
+        CrossBreak(tb + margin);
+        continue;
+      }
+      target = std::min(t1, tb - margin);
+    }
+    double h = std::min({h_, max_step_, target - t_});
+    // Do not leave a sliver: stretch to the target when the rest is within 10 % of a step.
+    if (target - t_ - h < 0.1 * h) h = target - t_;
     double err = TrialStep(h);
     while (!(err <= 1.0)) {
       ++rejected_;
@@ -106,6 +117,20 @@ bool TdStepper::AdvanceTo(double t1) {
   }
   t_ = t1;
   return true;
+}
+
+void TdStepper::CrossBreak(double t_after) {
+  // The state is continuous; the stored energy jumps by E(θ+) − E(θ−) at fixed coordinates:
+  // work done by the prescribed mesh motion, booked as phase work.
+  Eval(t_, x_, v_, false);
+  const double before = ws_.mesh_energy;
+  t_ = t_after;
+  Eval(t_, x_, v_, false);
+  phase_work_ += ws_.mesh_energy - before;
+  switching_ = ws_.switching;
+  live_ = ws_.switching_live;
+  ++breaks_;
+  OnRestart();
 }
 
 bool TdStepper::LocateEvent() {

@@ -45,6 +45,8 @@ class TdStepper {
   long steps() const { return steps_; }
   long rejected() const { return rejected_; }
   long events() const { return events_; }
+  /// Coefficient jumps crossed.
+  long breaks() const { return breaks_; }
   /// End of the step that crossed the last located switching zero [s] (NaN before any).
   double last_event_time() const { return last_event_time_; }
   long evaluations() const { return evaluations_; }
@@ -60,6 +62,8 @@ class TdStepper {
   virtual void Commit() = 0;
   /// Called by Reset after the state is set (e.g. the consistent acceleration).
   virtual void OnReset() {}
+  /// Called after a coefficient jump (ws_ holds the forces at the new phase).
+  virtual void OnRestart() {}
   /// Order of the local error estimate (step-size exponent 1/(order+1)).
   virtual int order() const = 0;
 
@@ -84,7 +88,7 @@ class TdStepper {
   std::vector<char> live_, trial_live_;
   double phase_work_ = 0.0, dissipated_ = 0.0;
   double h_ = 0.0, max_step_ = 0.0;
-  long steps_ = 0, rejected_ = 0, events_ = 0, evaluations_ = 0;
+  long steps_ = 0, rejected_ = 0, events_ = 0, evaluations_ = 0, breaks_ = 0;
   double last_event_time_ = std::numeric_limits<double>::quiet_NaN();
   std::string message_;
 
@@ -92,6 +96,8 @@ class TdStepper {
   /// Locates the earliest switching-function zero in the trial step and leaves the trial just
   /// past it. False on failure.
   bool LocateEvent();
+  /// Moves from just before a coefficient jump to t_after, just past it, booking the energy jump.
+  void CrossBreak(double t_after);
 };
 
 /// The GSL rk8pd stepper (rk_stepper.cpp).

@@ -4,7 +4,9 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <variant>
 
@@ -42,10 +44,19 @@ Matrix2 SampledSliceDamping(const SliceMeshCore& core, double c_m) {
   return sum / samples;
 }
 
-/// E of a linear core at (θ_k, δ): ½ eᵀK2e, e = δ − ε [J].
-double LinearEnergy(const LinearMeshCore& core, double theta, const Vector2& delta) {
-  const Vector2 e = delta - EvalTransmissionError(core, theta);
-  return 0.5 * e.dot(EvalStiffnessCore(core, theta) * e);
+/// Appends the jumps of a piecewise-constant coefficient; true when it is one.
+bool AddBreaks(const Coefficient& coef, std::vector<std::pair<VectorX, double>>* breaks) {
+  const auto* pc = std::get_if<PiecewiseConstantCoefficient>(&coef);
+  if (pc == nullptr || pc->num_intervals() < 2) return pc != nullptr;
+  breaks->emplace_back(pc->breakpoints(), Period(coef));
+  return true;
+}
+
+/// E of a linear core at δ with K2 at θ_K and ε at θ_ε: ½ eᵀK2e, e = δ − ε [J].
+double LinearEnergy(const LinearMeshCore& core, double theta_k, double theta_e,
+                    const Vector2& delta) {
+  const Vector2 e = delta - EvalTransmissionError(core, theta_e);
+  return 0.5 * e.dot(EvalStiffnessCore(core, theta_k) * e);
 }
 
 }  // namespace
@@ -71,10 +82,20 @@ TdSystem::TdSystem(const SystemModel& m) : model(m) {
                    [&](const LinearMeshCore& core) {
                      t.kind = TdMeshTerm::Kind::kLinear;
                      t.linear = &core;
+                     if (!core.is_mean_lti()) {
+                       t.stepwise_stiffness = AddBreaks(core.stiffness(), &t.breaks);
+                     }
+                     if (core.transmission_error()) {
+                       t.stepwise_offset = AddBreaks(*core.transmission_error(), &t.breaks);
+                     }
                    },
                    [&](const SliceMeshCore& core) {
                      t.kind = TdMeshTerm::Kind::kSlice;
                      t.slice = &core;
+                     t.stepwise_stiffness = AddBreaks(core.stiffness(), &t.breaks);
+                     if (core.separation()) {
+                       t.stepwise_offset = AddBreaks(*core.separation(), &t.breaks);
+                     }
                      t.num_switching = core.num_slices() * (core.has_back_flank() ? 2 : 1);
                      any_slice = true;
                    },
@@ -89,6 +110,7 @@ TdSystem::TdSystem(const SystemModel& m) : model(m) {
                    },
                },
                mesh.core);
+    has_breaks = has_breaks || !t.breaks.empty();
     t.internal_offset = num_dofs + internal;
     internal += t.num_internal;
     t.switching_offset = switching;
@@ -171,6 +193,37 @@ bool TdSystem::has_nonlinear() const {
   return false;
 }
 
+double TdSystem::NextBreakTime(double t, double theta0, double omega, double* margin) const {
+  double best = std::numeric_limits<double>::infinity();
+  *margin = 0.0;
+  const double theta = theta0 + omega * t;
+  for (const TdMeshTerm& term : terms) {
+    const double rate = term.phase_ratio * omega;
+    if (term.breaks.empty() || rate == 0.0) continue;
+    const double th = term.phase_ratio * theta + term.phase_offset;
+    // Half-width of the gap stepped across: well above the rounding of θ_k, far below any
+    // physical time scale (1e-9 rad ≈ 1.6e-10 mesh periods).
+    const double gap = 1e-9 + 1e-13 * std::abs(th);
+    for (const auto& [b, period] : term.breaks) {
+      const double u = th - period * std::floor(th / period);  // in [0, period)
+      double d = std::numeric_limits<double>::infinity();
+      if (rate > 0.0) {
+        const auto* it = std::upper_bound(b.data(), b.data() + b.size(), u);
+        d = it != b.data() + b.size() ? *it - u : b(0) + period - u;
+      } else {
+        const auto* it = std::lower_bound(b.data(), b.data() + b.size(), u);
+        d = it != b.data() ? u - *(it - 1) : u - (b(b.size() - 1) - period);
+      }
+      const double tb = t + d / std::abs(rate);
+      if (tb < best) {
+        best = tb;
+        *margin = gap / std::abs(rate);
+      }
+    }
+  }
+  return best;
+}
+
 TdWorkspace::TdWorkspace(const TdSystem& sys) {
   force = VectorX::Zero(sys.n);
   tangent_k = MatrixX::Zero(sys.n, sys.n);
@@ -185,6 +238,8 @@ TdWorkspace::TdWorkspace(const TdSystem& sys) {
   core_x.resize(meshes);
   core_v.resize(meshes);
   slice.resize(meshes);
+  slice_k.resize(meshes);
+  slice_e.resize(meshes);
   for (const TdMeshTerm& t : sys.terms) {
     const auto k = static_cast<std::size_t>(t.mesh);
     if (t.kind == TdMeshTerm::Kind::kSlice) {
@@ -194,6 +249,10 @@ TdWorkspace::TdWorkspace(const TdSystem& sys) {
       core_out[k] = t.nonlinear->MakeOutput();
       core_x[k] = VectorX::Zero(t.nonlinear->num_coordinates());
       core_v[k] = VectorX::Zero(t.nonlinear->num_coordinates());
+    }
+    if (t.kind == TdMeshTerm::Kind::kSlice) {
+      slice_k[k] = VectorX::Zero(t.slice->num_slices());
+      slice_e[k] = VectorX::Zero(t.slice->num_slices());
     }
   }
 }
@@ -266,10 +325,14 @@ void EvalForces(const TdSystem& sys, TdWorkspace& ws, double theta, double theta
       const Vector2 e = delta - EvalTransmissionError(core, th);
       F = J * e + C2 * rate;
       ws.mesh_energy += 0.5 * e.dot(J * e);
-      if (core.has_transmission_error() || Classify(core) != TimeDependence::kConstant) {
+      // Smooth parts only: a piecewise-constant coefficient's jumps are phase events.
+      const double hk = t.stepwise_stiffness ? 0.0 : kPhaseStep;
+      const double he = t.stepwise_offset ? 0.0 : kPhaseStep;
+      if ((hk > 0.0 && Classify(core) != TimeDependence::kConstant) ||
+          (he > 0.0 && core.has_transmission_error())) {
         ws.mesh_phase_power += th_rate *
-                               (LinearEnergy(core, th + kPhaseStep, delta) -
-                                LinearEnergy(core, th - kPhaseStep, delta)) /
+                               (LinearEnergy(core, th + hk, th + he, delta) -
+                                LinearEnergy(core, th - hk, th - he, delta)) /
                                (2.0 * kPhaseStep);
       }
       ws.contacts[k] = -1;
@@ -277,9 +340,28 @@ void EvalForces(const TdSystem& sys, TdWorkspace& ws, double theta, double theta
       // Slice force with contact loss and back flank; the constant damper C̄2 of the HB.
       const SliceMeshCore& core = *t.slice;
       SliceMeshWorkspace& sw = *ws.slice[k];
-      const double u_plus = EvalSliceForce(core, sw, th + kPhaseStep, delta(0), delta(1)).energy;
-      const double u_minus = EvalSliceForce(core, sw, th - kPhaseStep, delta(0), delta(1)).energy;
       const SliceForce f = EvalSliceForce(core, sw, th, delta(0), delta(1));
+      // Phase power from the smooth coefficients only (jumps are phase events).
+      VectorX& ks = ws.slice_k[k];
+      VectorX& es = ws.slice_e[k];
+      double u_pm[2] = {0.0, 0.0};
+      if (!t.stepwise_stiffness || (core.separation() && !t.stepwise_offset)) {
+        for (int side = 0; side < 2; ++side) {
+          const double shift = side == 0 ? kPhaseStep : -kPhaseStep;
+          if (t.stepwise_stiffness) {
+            ks = sw.stiffness;
+          } else {
+            Evaluate(core.stiffness(), th + shift, ks);
+          }
+          if (!core.separation() || t.stepwise_offset) {
+            es = sw.separation;
+          } else {
+            Evaluate(*core.separation(), th + shift, es);
+          }
+          u_pm[side] = CalcSliceForce(core, ks, es, delta(0), delta(1)).energy;
+        }
+      }
+      const double u_plus = u_pm[0], u_minus = u_pm[1];
       C2 = t.mean_damping;
       J = f.jacobian;
       F = f.force + C2 * rate;
@@ -378,13 +460,27 @@ TdStatic SolveStatic(const TdSystem& sys, TdWorkspace& ws, double theta0) {
     a.bottomLeftCorner(r, sys.n) = mv.transpose();
     VectorX b = VectorX::Zero(sys.n + r);
     b.head(sys.n) = ws.force;
-    const Eigen::FullPivLU<MatrixX> lu(a);
+    // Symmetric diagonal scaling (m and rad, N/m and kg mix): unit diagonal on the coordinates,
+    // unit-norm border columns, so that the rank decision of the LU is scale-free.
+    VectorX s = VectorX::Ones(sys.n + r);
+    for (int i = 0; i < sys.n; ++i) {
+      const double d = std::abs(a(i, i));
+      if (d > 0.0) s(i) = 1.0 / std::sqrt(d);
+    }
+    for (int j = 0; j < r; ++j) {
+      const double c = (s.head(sys.n).asDiagonal() * mv.col(j)).norm();
+      if (c > 0.0) s(sys.n + j) = 1.0 / c;
+    }
+    a = s.asDiagonal() * a * s.asDiagonal();
+    b = s.asDiagonal() * b;
+    Eigen::FullPivLU<MatrixX> lu(a);
+    lu.setThreshold(1e-13);
     if (!lu.isInvertible()) {
       out.message = "static equilibrium: the tangent stiffness is singular at iteration " +
                     std::to_string(it) + " (a mesh out of contact, or an unsupported body)";
       return out;
     }
-    const VectorX dx = lu.solve(b).head(sys.n);
+    const VectorX dx = (s.asDiagonal() * lu.solve(b)).head(sys.n);
     if (!dx.allFinite()) {
       out.message = "static equilibrium: non-finite Newton step at iteration " + std::to_string(it);
       return out;

@@ -34,6 +34,13 @@ struct TdMeshTerm {
   int num_internal = 0;      ///< internal coordinates (nonlinear cores)
   int switching_offset = 0;  ///< first switching function of this mesh
   int num_switching = 0;     ///< switching functions of this mesh
+  /// Whether the stiffness / transmission-error (linear) or stiffness / separation (slice)
+  /// coefficient is piecewise constant: its jumps are crossed as phase events (TdSystem::
+  /// NextBreakTime) and it is held constant in the phase power.
+  bool stepwise_stiffness = false, stepwise_offset = false;
+  /// Jump phases of the piecewise-constant coefficients: per coefficient, the breakpoints in
+  /// [0, period) [rad] and the period [rad].
+  std::vector<std::pair<VectorX, double>> breaks;
 };
 
 /// @brief Immutable time-domain model (built once, shared by threads).
@@ -54,6 +61,12 @@ struct TdSystem {
   std::shared_ptr<const Eigen::LDLT<MatrixX>> mass_ldlt;  ///< M factorization
   /// True when a mesh has a NonlinearMeshCore.
   bool has_nonlinear() const;
+  /// True when some mesh has a piecewise-constant coefficient.
+  bool has_breaks = false;
+  /// @brief The first time after t at which a piecewise-constant coefficient of some mesh jumps
+  /// (θ = theta0 + omega·t), +∞ when none; *margin receives the half-width [s] of the phase
+  /// gap stepped across at the jump (so that each side evaluates its own interval).
+  double NextBreakTime(double t, double theta0, double omega, double* margin) const;
 };
 
 /// @brief Per-thread scratch and outputs of EvalForces.
@@ -75,6 +88,7 @@ struct TdWorkspace {
   std::vector<std::unique_ptr<NonlinearMeshCoreWorkspace>> core_ws;  ///< per mesh (nonlinear)
   std::vector<NonlinearMeshCoreOutput> core_out;                     ///< per mesh (nonlinear)
   std::vector<VectorX> core_x, core_v;                               ///< gather buffers
+  std::vector<VectorX> slice_k, slice_e;  ///< per mesh, shifted slice values (phase power)
 };
 
 /// @brief Evaluates the total force at (θ, θ̇, x, v) into ws (no allocation after construction).

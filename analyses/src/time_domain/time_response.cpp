@@ -155,6 +155,7 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
     summary.counters["steps"] = stepper->steps();
     summary.counters["rejected_steps"] = stepper->rejected();
     summary.counters["events"] = stepper->events();
+    summary.counters["coefficient_jumps"] = stepper->breaks();
     summary.counters["force_evaluations"] = stepper->evaluations();
     out.final_state.resize(2 * n);
     out.final_state << stepper->x(), stepper->v();
