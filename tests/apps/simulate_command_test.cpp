@@ -26,14 +26,19 @@ using test::RunJson;
 // Time integration vs harmonic balance [-], relative on the RMS DTE: HB truncation (its own
 // tolerance 1e-4 linear; 24 harmonics nonlinear), the steady-state test (period-to-period change
 // 1e-6 of the state) and the integrator's local error 1e-8; the RMS of 64 samples per period is
-// exact (discrete Parseval) for harmonics below 32.
+// exact (discrete Parseval) for harmonics below 32. Measured: 5e-6 (helical pair, 625 Hz) and
+// 6e-5 (slice rig, 2000 Hz, 3.4 % contact loss: the DTE is only piecewise smooth there).
 constexpr double kLinearHbTol = 2e-3;
-// Slice mesh: the contact switches make the DTE only piecewise smooth, so 24 harmonics leave a
-// truncation error of order 1e-3 (measured 3e-4, see docs/benchmarks.md … cli part of issue 14).
-constexpr double kNonlinearHbTol = 1e-2;
+constexpr double kNonlinearHbTol = 2e-3;
 
+// The helical pair's bearings have no damping of their own: without the modal damping its
+// transverse modes, excited by the start, never decay and no steady state is reached.
 const std::vector<std::string> kHelical = {"builtin:helical-pair", "--set",
-                                           "mesh.pinion-wheel.damping_ratio=0.05"};
+                                           "mesh.pinion-wheel.damping_ratio=0.05", "--set",
+                                           "damping.modal_ratio=0.02"};
+// The rig (LTV, contact lines): its torsional mode carries the mesh damping; fast.
+const std::vector<std::string> kRigLtv = {"builtin:kahraman-blankenship-rig", "--set",
+                                          "mesh.pinion-wheel.damping_ratio=0.05"};
 const std::vector<std::string> kRigSlices = {"builtin:kahraman-blankenship-rig", "--set",
                                              "mesh.pinion-wheel.damping_ratio=0.05", "--set",
                                              "mesh.pinion-wheel.model=slices"};
@@ -135,7 +140,7 @@ TEST(SimulateCommandTest, SliceRigDefaultRunEqualsNonlinearHarmonicBalance) {
 TEST(SimulateCommandTest, SweepWritesUpAndDownBranchesThatAgreeForAnLtvScene) {
   const std::filesystem::path dir = OutDir("sweep");
   const CliRun run = RunGeardyn(
-      Cmd("simulate", kHelical,
+      Cmd("simulate", kRigLtv,
           {"--mesh-frequency", "1000:3000:3", "--sweep", "both", "--out", dir.string()}));
   ASSERT_EQ(run.code, kExitOk) << run.err << run.out;
   const std::vector<std::string> lines = ReadLines(dir / "simulate_sweep.csv");
@@ -173,7 +178,7 @@ TEST(SimulateCommandTest, SweepWritesUpAndDownBranchesThatAgreeForAnLtvScene) {
 TEST(SimulateCommandTest, FailedRunKeepsItsFiles) {
   const std::filesystem::path dir = OutDir("failed");
   const CliRun run = RunGeardyn(
-      Cmd("simulate", kHelical,
+      Cmd("simulate", kRigLtv,
           {"--max-periods", "1", "--steady-tolerance", "1e-14", "--out", dir.string(), "--json"}));
   EXPECT_EQ(run.code, kExitNumericalIssue) << run.err;
   const nlohmann::json report = nlohmann::json::parse(run.out);
