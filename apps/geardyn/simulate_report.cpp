@@ -331,10 +331,12 @@ std::string RenderSimulatePlot(const std::string& title, const std::vector<std::
       torques.push_back(o.torque_nm);
     }
   }
-  const std::string mesh = mesh_names.empty() ? "" : " (" + mesh_names.front() + ")";
+  // The mesh goes into the title: a rotated y label longer than its panel would run into the
+  // next panel's.
+  if (!mesh_names.empty()) spec.title += ", mesh " + mesh_names.front();
   for (const double torque : torques) {
     PlotPanel panel;
-    panel.y_label = "RMS DTE [µm]" + mesh + (torques.size() > 1 ? ", " + Num(torque) + " N·m" : "");
+    panel.y_label = "RMS DTE [µm]" + (torques.size() > 1 ? " at " + Num(torque) + " N·m" : "");
     for (const HbOverlay& o : overlays) {
       if (o.torque_nm != torque) continue;
       PlotSeries s;
