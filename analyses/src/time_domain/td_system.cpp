@@ -25,6 +25,10 @@ namespace {
 /// harmonics up to ~30, far below the 1e-4 target of the energy balance.
 constexpr double kPhaseStep = 1e-5;
 
+/// Stand-in mesh stiffness of a NonlinearMeshCore for the rigid-mode detection and the static
+/// starting guess only [N/m] (the order of a gear mesh's; Newton then uses the core's tangent).
+constexpr double kStandInMeshStiffness = 1e9;
+
 /// θ-mean of a slice core's all-loaded damping C2 = (c_m/Σk_s) K2 from samples (used when the
 /// harmonic expansion is not available: a phase ratio ≠ 1).
 Matrix2 SampledSliceDamping(const SliceMeshCore& core, double c_m) {
@@ -165,25 +169,41 @@ TdSystem::TdSystem(const SystemModel& m) : model(m) {
       "InternalMass) is not positive definite");
   mass_ldlt = ldlt;
 
-  // Rigid-body modes of the mean system stiffness (K0 + mean mesh terms; the nonlinear cores'
-  // internal coordinates are excluded: they carry the cores' own springs). The part of f0 along
-  // them is removed M-consistently, f0 − M V (VᵀMV)⁻¹ Vᵀ f0, so that the train does not
-  // accelerate (as SolveStaticDeflection and the nonlinear HB remove it).
+  // Rigid-body modes of the mean system stiffness: K0 + the mean linear/slice mesh terms +, for
+  // every NonlinearMeshCore, a stand-in mesh spring Gᵀ diag(k_v, k_v·(1 cm)²) G on its mesh
+  // Jacobian (the core resists the mesh deflection; its actual stiffness is unknown until it is
+  // in contact). Internal coordinates are not part of a rigid motion (they are relative to the
+  // trunks): zero rows. The part of f0 along the modes is removed M-consistently,
+  // f0 − M V (VᵀMV)⁻¹ Vᵀ f0, so that the train does not accelerate (as SolveStaticDeflection and
+  // the nonlinear HB remove it).
   SystemWorkspace sws(model, StorageKind::kDense);
-  const MatrixX kbar = AssembleMeanStiffness(model, sws);
-  const RigidBodyModes rigid = ComputeRigidBodyModes(kbar);
+  guess_stiffness = MatrixX::Zero(n, n);
+  guess_stiffness.topLeftCorner(num_dofs, num_dofs) = AssembleMeanStiffness(model, sws);
+  for (const TdMeshTerm& t : terms) {
+    if (t.kind != TdMeshTerm::Kind::kNonlinear) continue;
+    Matrix2 kv = Matrix2::Zero();
+    kv(0, 0) = kStandInMeshStiffness;
+    kv(1, 1) = kStandInMeshStiffness * 1e-4;
+    const Matrix12 kp = t.G.transpose() * kv * t.G;
+    for (int a = 0; a < 12; ++a) {
+      if (t.dofs[a] < 0) continue;
+      for (int b = 0; b < 12; ++b) {
+        if (t.dofs[b] >= 0) guess_stiffness(t.dofs[a], t.dofs[b]) += kp(a, b);
+      }
+    }
+  }
+  const RigidBodyModes rigid =
+      ComputeRigidBodyModes(guess_stiffness.topLeftCorner(num_dofs, num_dofs));
   const VectorX f0 = model.constant_load();
   load0.head(num_dofs) = f0;
   rigid_modes = MatrixX::Zero(n, rigid.count());
-  if (rigid.count() > 0 && !has_nonlinear()) {
+  if (rigid.count() > 0) {
     rigid_modes.topRows(num_dofs) = rigid.modes;
     const MatrixX mv = mass * rigid_modes;
     const MatrixX vmv = rigid_modes.transpose() * mv;
     const VectorX coef = vmv.ldlt().solve(rigid_modes.transpose() * load0);
     unbalanced_fraction = rigid.UnbalancedFraction(f0);
     load0 -= mv * coef;
-  } else {
-    rigid_modes.resize(n, 0);
   }
 }
 
@@ -233,6 +253,7 @@ TdWorkspace::TdWorkspace(const TdSystem& sys) {
   const std::size_t meshes = sys.terms.size();
   force_eta.assign(meshes, 0.0);
   contacts.assign(meshes, -1);
+  mesh_tangent.assign(meshes, Matrix2::Zero());
   core_ws.resize(meshes);
   core_out.resize(meshes);
   core_x.resize(meshes);
@@ -387,6 +408,7 @@ void EvalForces(const TdSystem& sys, TdWorkspace& ws, double theta, double theta
     }
     ws.mesh_dissipation += rate.dot(C2 * rate);
     ws.force_eta[k] = F(0);
+    if (with_jacobians) ws.mesh_tangent[k] = J;
     // Force on the pair's coordinates −Gᵀ F; tangents Gᵀ J G and Gᵀ C2 G.
     const Vector12 fp = -t.G.transpose() * F;
     Matrix12 kp, cp;
@@ -440,49 +462,68 @@ double EstimateHighestFrequency(const TdSystem& sys, TdWorkspace& ws, double the
 
 namespace geardyn::internal {
 
-TdStatic SolveStatic(const TdSystem& sys, TdWorkspace& ws, double theta0) {
+namespace {
+
+/// Solves [A, MV; VᵀM, 0][dx; λ] = [b; 0] with a symmetric diagonal scaling (m and rad, N/m and
+/// kg mix: unit diagonal on the coordinates, unit-norm border columns) so that the rank decision
+/// of the full-pivoting LU is scale-free. False when singular.
+bool SolveBordered(const MatrixX& A, const MatrixX& mv, const VectorX& b, VectorX* dx) {
+  const auto n = A.rows(), r = mv.cols();
+  MatrixX a = MatrixX::Zero(n + r, n + r);
+  a.topLeftCorner(n, n) = A;
+  a.topRightCorner(n, r) = mv;
+  a.bottomLeftCorner(r, n) = mv.transpose();
+  VectorX rhs = VectorX::Zero(n + r);
+  rhs.head(n) = b;
+  VectorX s = VectorX::Ones(n + r);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double d = std::abs(a(i, i));
+    if (d > 0.0) s(i) = 1.0 / std::sqrt(d);
+  }
+  for (Eigen::Index j = 0; j < r; ++j) {
+    const double c = (s.head(n).asDiagonal() * mv.col(j)).norm();
+    if (c > 0.0) s(n + j) = 1.0 / c;
+  }
+  a = s.asDiagonal() * a * s.asDiagonal();
+  rhs = s.asDiagonal() * rhs;
+  Eigen::FullPivLU<MatrixX> lu(a);
+  lu.setThreshold(1e-13);
+  if (!lu.isInvertible()) return false;
+  *dx = (s.asDiagonal() * lu.solve(rhs)).head(n);
+  return dx->allFinite();
+}
+
+}  // namespace
+
+TdStatic SolveStatic(const TdSystem& sys, TdWorkspace& ws, double theta0, const VectorX* start) {
   TdStatic out;
   out.x = VectorX::Zero(sys.n);
-  // Start from the linear (all-loaded, mean) static deflection; the internal coordinates at 0.
-  out.x.head(sys.num_dofs) = SolveStaticDeflection(sys.model).deflection;
   const VectorX zero = VectorX::Zero(sys.n);
-  const int r = static_cast<int>(sys.rigid_modes.cols());
   const MatrixX mv = sys.mass * sys.rigid_modes;
+  // Starting guess: the linear problem with every slice loaded, the stand-in springs of the
+  // nonlinear cores and their tangents at rest (their internal springs).
+  EvalForces(sys, ws, theta0, 0.0, zero, zero, true);
+  MatrixX guess = sys.guess_stiffness;
+  for (const TdMeshTerm& t : sys.terms) {
+    if (t.kind != TdMeshTerm::Kind::kNonlinear || t.num_internal == 0) continue;
+    guess.block(t.internal_offset, t.internal_offset, t.num_internal, t.num_internal) =
+        ws.tangent_k.block(t.internal_offset, t.internal_offset, t.num_internal, t.num_internal);
+  }
+  VectorX x_guess;
+  if (start != nullptr) {
+    out.x = *start;
+  } else if (SolveBordered(guess, mv, ws.force, &x_guess)) {
+    out.x = x_guess;
+  }
   // Newton on force(x, 0, θ₀) = 0, dx = K_t⁻¹ force, bordered by VᵀM dx = 0 on the rigid modes
   // (the rigid coordinates stay where they are: the solution is unique in the complement).
   EvalForces(sys, ws, theta0, 0.0, out.x, zero, true);
-  double scale = std::max(out.x.lpNorm<Eigen::Infinity>(), 1e-300);
   for (int it = 1; it <= 60; ++it) {
     out.iterations = it;
-    MatrixX a = MatrixX::Zero(sys.n + r, sys.n + r);
-    a.topLeftCorner(sys.n, sys.n) = ws.tangent_k;
-    a.topRightCorner(sys.n, r) = mv;
-    a.bottomLeftCorner(r, sys.n) = mv.transpose();
-    VectorX b = VectorX::Zero(sys.n + r);
-    b.head(sys.n) = ws.force;
-    // Symmetric diagonal scaling (m and rad, N/m and kg mix): unit diagonal on the coordinates,
-    // unit-norm border columns, so that the rank decision of the LU is scale-free.
-    VectorX s = VectorX::Ones(sys.n + r);
-    for (int i = 0; i < sys.n; ++i) {
-      const double d = std::abs(a(i, i));
-      if (d > 0.0) s(i) = 1.0 / std::sqrt(d);
-    }
-    for (int j = 0; j < r; ++j) {
-      const double c = (s.head(sys.n).asDiagonal() * mv.col(j)).norm();
-      if (c > 0.0) s(sys.n + j) = 1.0 / c;
-    }
-    a = s.asDiagonal() * a * s.asDiagonal();
-    b = s.asDiagonal() * b;
-    Eigen::FullPivLU<MatrixX> lu(a);
-    lu.setThreshold(1e-13);
-    if (!lu.isInvertible()) {
+    VectorX dx;
+    if (!SolveBordered(ws.tangent_k, mv, ws.force, &dx)) {
       out.message = "static equilibrium: the tangent stiffness is singular at iteration " +
                     std::to_string(it) + " (a mesh out of contact, or an unsupported body)";
-      return out;
-    }
-    const VectorX dx = (s.asDiagonal() * lu.solve(b)).head(sys.n);
-    if (!dx.allFinite()) {
-      out.message = "static equilibrium: non-finite Newton step at iteration " + std::to_string(it);
       return out;
     }
     // Backtracking on ‖force‖ (the slice force is only piecewise linear).
@@ -496,7 +537,7 @@ TdStatic SolveStatic(const TdSystem& sys, TdWorkspace& ws, double theta0) {
       EvalForces(sys, ws, theta0, 0.0, trial, zero, true);
     }
     out.x = trial;
-    scale = std::max(out.x.lpNorm<Eigen::Infinity>(), 1e-300);
+    const double scale = std::max(out.x.lpNorm<Eigen::Infinity>(), 1e-300);
     if (step * dx.lpNorm<Eigen::Infinity>() <= 1e-12 * scale) {
       out.ok = true;
       return out;

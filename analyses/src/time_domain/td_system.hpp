@@ -55,6 +55,8 @@ struct TdSystem {
   MatrixX damping0;     ///< (n×n) C0 [N·s/m, N·s, N·m·s]
   VectorX load0;        ///< (n) f0 with its unbalanced part removed (M-consistently) [N, N·m]
   MatrixX rigid_modes;  ///< (n × r) rigid-body modes of the mean stiffness (internal rows 0)
+  /// (n×n) mean stiffness with stand-in springs for nonlinear meshes (static starting guess)
+  MatrixX guess_stiffness;
   double unbalanced_fraction = 0.0;  ///< relative part of f0 along the rigid modes (removed)
   std::vector<TdMeshTerm> terms;     ///< one per mesh
   int num_switching = 0;             ///< total switching functions
@@ -73,16 +75,17 @@ struct TdSystem {
 struct TdWorkspace {
   explicit TdWorkspace(const TdSystem& sys);
 
-  VectorX force;                     ///< (n) f0 − K0x − C0v − Σ f_k [N, N·m]
-  MatrixX tangent_k;                 ///< (n×n) −∂force/∂x (with_jacobians)
-  MatrixX tangent_c;                 ///< (n×n) −∂force/∂v (with_jacobians)
-  double mesh_energy = 0.0;          ///< Σ E_k [J]
-  double mesh_dissipation = 0.0;     ///< Σ D_k [W] (mesh dampers and cores)
-  double mesh_phase_power = 0.0;     ///< Σ P_k [W]
-  VectorX switching;                 ///< (num_switching) signed gaps [m]
-  std::vector<char> switching_live;  ///< per switching function: watched at this state
-  std::vector<double> force_eta;     ///< per mesh F_η [N] (elastic + damping; 0 nonlinear)
-  std::vector<int> contacts;         ///< per mesh: loaded slices / core contacts (−1 linear)
+  VectorX force;                      ///< (n) f0 − K0x − C0v − Σ f_k [N, N·m]
+  MatrixX tangent_k;                  ///< (n×n) −∂force/∂x (with_jacobians)
+  MatrixX tangent_c;                  ///< (n×n) −∂force/∂v (with_jacobians)
+  double mesh_energy = 0.0;           ///< Σ E_k [J]
+  double mesh_dissipation = 0.0;      ///< Σ D_k [W] (mesh dampers and cores)
+  double mesh_phase_power = 0.0;      ///< Σ P_k [W]
+  VectorX switching;                  ///< (num_switching) signed gaps [m]
+  std::vector<char> switching_live;   ///< per switching function: watched at this state
+  std::vector<double> force_eta;      ///< per mesh F_η [N] (elastic + damping; 0 nonlinear)
+  std::vector<int> contacts;          ///< per mesh: loaded slices / core contacts (−1 linear)
+  std::vector<Matrix2> mesh_tangent;  ///< per mesh ∂F/∂δ (linear, slice; with_jacobians)
 
   std::vector<std::unique_ptr<SliceMeshWorkspace>> slice;  ///< per mesh (null: not a slice)
   std::vector<std::unique_ptr<NonlinearMeshCoreWorkspace>> core_ws;  ///< per mesh (nonlinear)
@@ -120,6 +123,9 @@ struct TdStatic {
   bool ok = false;
   std::string message;
 };
-TdStatic SolveStatic(const TdSystem& sys, TdWorkspace& ws, double theta0);
+/// @param[in] start starting point (e.g. the previous θ sample's solution); null: the bordered
+///   linear guess.
+TdStatic SolveStatic(const TdSystem& sys, TdWorkspace& ws, double theta0,
+                     const VectorX* start = nullptr);
 
 }  // namespace geardyn::internal

@@ -84,6 +84,8 @@ bool TimeIntegrationOptions::IsValid(std::string* why) const {
     return OutOfRange(why, "event_time_tolerance", event_time_tolerance, "in [1e-14, 1e-2]");
   if (samples_per_period < 4 || samples_per_period > 65536)
     return OutOfRange(why, "samples_per_period", samples_per_period, "in [4, 65536]");
+  if (sparse_threshold < 1 || sparse_threshold > 10000000)
+    return OutOfRange(why, "sparse_threshold", sparse_threshold, "in [1, 1e7]");
   if (channel_decimation < 1 || channel_decimation > 65536)
     return OutOfRange(why, "channel_decimation", channel_decimation, "in [1, 65536]");
   return true;

@@ -5,6 +5,7 @@
 
 #include <omp.h>
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -141,14 +142,28 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
   const std::int64_t P = model.period_meshes() * so.period_multiple;
   const double period = mesh_period * static_cast<double>(P);
   const long samples = static_cast<long>(io.samples_per_period) * P;
+  // Every size has a bound (architecture §3.7): the recorded histories.
+  GEARDYN_THROW_UNLESS(
+      static_cast<double>(samples) * so.record_periods <= 5e7,
+      "samples_per_period × P × period_multiple × record_periods = "
+          << static_cast<double>(samples) * so.record_periods
+          << " recorded samples (8 bytes each per mesh and element component) exceed 5e7");
   VectorX dte(num_meshes);
   std::vector<double> prev_rms(static_cast<std::size_t>(num_meshes), -1.0);
-  VectorX prev_x = x0, prev_v = v0;
+  // y − V (VᵀMV)⁻¹ VᵀM y: removes the rigid-body part of a state vector.
+  const MatrixX mv = sys.mass * sys.rigid_modes;
+  const MatrixX vmv_inv = (sys.rigid_modes.transpose() * mv).inverse();
+  const auto rigid_projector = [&](const VectorX& y) -> VectorX {
+    if (sys.rigid_modes.cols() == 0) return y;
+    return y - sys.rigid_modes * (vmv_inv * (mv.transpose() * y));
+  };
+  VectorX prev_x = rigid_projector(x0), prev_v = rigid_projector(v0);
   int consecutive = 0;
   bool steady = false;
   bool failed = false;
   long period_index = 0;
 
+  Eigen::Index recorded = 0;  // samples written to the histories
   auto record_meta = [&]() {
     out.steps = stepper->steps();
     out.events = stepper->events();
@@ -201,31 +216,26 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
         if (ws.contacts[kk] == 0) ++(*loss)[kk];
       }
       if (!histories) continue;
-      const Eigen::Index at = out.time.size();
-      out.time.conservativeResize(at + 1);
+      // Buffers preallocated for all recorded periods (no per-sample reallocation).
+      const Eigen::Index at = recorded++;
       out.time(at) = t;
       for (int k = 0; k < num_meshes; ++k) {
         MeshTimeHistory& h = out.meshes[static_cast<std::size_t>(k)];
-        h.dte.conservativeResize(at + 1);
         h.dte(at) = dte(k);
         const internal::TdMeshTerm& term = sys.terms[static_cast<std::size_t>(k)];
         if (term.kind != internal::TdMeshTerm::Kind::kNonlinear) {
-          h.force.conservativeResize(at + 1);
           h.force(at) = ws.force_eta[static_cast<std::size_t>(k)];
         } else if (at % io.channel_decimation == 0) {
-          const VectorX& ch = ws.core_out[static_cast<std::size_t>(k)].channels;
-          h.channels.conservativeResize(ch.size(), h.channels.cols() + 1);
-          h.channels.col(h.channels.cols() - 1) = ch;
+          h.channels.col(at / io.channel_decimation) =
+              ws.core_out[static_cast<std::size_t>(k)].channels;
         }
       }
       if (io.record_element_forces) {
         for (std::size_t e = 0; e < model.elements().size(); ++e) {
           MatrixX& f = out.element_forces[e];
-          f.conservativeResize(f.rows(), at + 1);
-          VectorX fe(f.rows());
           CalcElementForce(model, ElementIndex(static_cast<int>(e)),
-                           stepper->x().head(sys.num_dofs), stepper->v().head(sys.num_dofs), fe);
-          f.col(at) = fe;
+                           stepper->x().head(sys.num_dofs), stepper->v().head(sys.num_dofs),
+                           f.col(at));
         }
       }
     }
@@ -260,8 +270,10 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
     }
     out.periods = p + 1;
     // Period-to-period change of the state at the period start and of each mesh's DTE RMS.
-    const VectorX& x = stepper->x();
-    const VectorX& v = stepper->v();
+    // Rigid-body motion (a free rotation of the train) is not vibration: the change is measured
+    // in the M-orthogonal complement of the rigid modes.
+    const VectorX x = rigid_projector(stepper->x());
+    const VectorX v = rigid_projector(stepper->v());
     const double xn = x.lpNorm<Eigen::Infinity>(), vn = v.lpNorm<Eigen::Infinity>();
     double change = xn > 0.0 ? (x - prev_x).lpNorm<Eigen::Infinity>() / xn : 0.0;
     if (vn > 0.0) change = std::max(change, (v - prev_v).lpNorm<Eigen::Infinity>() / vn);
@@ -304,25 +316,42 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
   // Recording (also after a non-steady end, so that the last periods can be inspected; never
   // after a numerical failure).
   if (!failed) {
+    const Eigen::Index total = static_cast<Eigen::Index>(samples) * so.record_periods;
+    const Eigen::Index decimated = (total + io.channel_decimation - 1) / io.channel_decimation;
+    out.time = VectorX::Zero(total);
     out.meshes.resize(static_cast<std::size_t>(num_meshes));
     for (int k = 0; k < num_meshes; ++k) {
       MeshTimeHistory& h = out.meshes[static_cast<std::size_t>(k)];
       h.name = model.meshes()[static_cast<std::size_t>(k)].name;
+      h.dte = VectorX::Zero(total);
       const internal::TdMeshTerm& term = sys.terms[static_cast<std::size_t>(k)];
       if (term.kind == internal::TdMeshTerm::Kind::kNonlinear) {
         h.channel_names = term.nonlinear->channel_names();
-        h.channels.resize(static_cast<Eigen::Index>(h.channel_names.size()), 0);
+        h.channels = MatrixX::Zero(static_cast<Eigen::Index>(h.channel_names.size()), decimated);
+      } else {
+        h.force = VectorX::Zero(total);
       }
     }
     if (io.record_element_forces) {
       for (const SystemElement& e : model.elements()) {
-        out.element_forces.emplace_back(static_cast<Eigen::Index>(e.dofs.size()), 0);
+        out.element_forces.push_back(
+            MatrixX::Zero(static_cast<Eigen::Index>(e.dofs.size()), total));
       }
     }
     std::vector<Stats> stats(static_cast<std::size_t>(num_meshes));
     std::vector<long> loss(static_cast<std::size_t>(num_meshes), 0);
     for (int p = 0; p < so.record_periods; ++p) {
       if (!integrate_period(true, &stats, &loss)) break;
+    }
+    if (recorded < total) {  // a failed recording keeps the samples written so far
+      out.time.conservativeResize(recorded);
+      for (MeshTimeHistory& h : out.meshes) {
+        h.dte.conservativeResize(recorded);
+        if (h.force.size() > 0) h.force.conservativeResize(recorded);
+        h.channels.conservativeResize(
+            h.channels.rows(), (recorded + io.channel_decimation - 1) / io.channel_decimation);
+      }
+      for (MatrixX& f : out.element_forces) f.conservativeResize(f.rows(), recorded);
     }
     for (int k = 0; k < num_meshes; ++k) {
       const auto kk = static_cast<std::size_t>(k);

@@ -90,5 +90,71 @@ TEST(RigTimeResponse, SliceSteadyStateEqualsNonlinearHarmonicBalance) {
   }
 }
 
+/// First step of a branch where the RMS DTE changes by more than the factor `ratio` (> 1: up,
+/// < 1: down) from one point to the next: the midpoint of that step [Hz], NaN when none.
+double JumpFrequency(const TimeSweep& sweep, SweepBranch branch, double ratio) {
+  const TimeSweepPoint* previous = nullptr;
+  for (const TimeSweepPoint& p : sweep.points) {
+    if (p.branch != branch) continue;
+    if (previous != nullptr && (ratio > 1.0 ? p.rms_dte[0] > ratio * previous->rms_dte[0]
+                                            : p.rms_dte[0] < ratio * previous->rms_dte[0])) {
+      return 0.5 * (p.mesh_frequency_hz + previous->mesh_frequency_hz);
+    }
+    previous = &p;
+  }
+  return std::nan("");
+}
+
+// The softening primary resonance of the slice rig (kb_rig_jumps_test.cpp): the up sweep stays
+// on the small-amplitude branch up to its fold and jumps up, the down sweep (from the up sweep's
+// end state) stays on the large-amplitude branch down to its fold and jumps down; both jump
+// frequencies within 2 % of the nonlinear HB's folds (issue 14, "Must show").
+TEST(RigTimeResponse, SweepsFindBothBranchesOfTheSliceJump) {
+  const SystemModel model = testing::KbRigSliceModel(100.0);
+  SystemNhbOptions o;
+  o.hb.harmonics = 16;
+  o.start_hz = 1800.0;
+  o.end_hz = 2800.0;
+  o.continuation.max_step = 0.1;
+  o.continuation.max_tangent_angle = 0.4;
+  o.compute_element_forces = false;
+  const SystemNhbCurve c = TraceSystemNonlinearHb(model, o);
+  ASSERT_TRUE(c.summary.ok()) << c.summary.BriefReport();
+  ASSERT_EQ(c.jumps.size(), 2u);
+  const SystemNhbJump& up = c.jumps[0].up_sweep ? c.jumps[0] : c.jumps[1];
+  const SystemNhbJump& down = c.jumps[0].up_sweep ? c.jumps[1] : c.jumps[0];
+  ASSERT_TRUE(up.up_sweep && !down.up_sweep);
+
+  std::vector<double> f;
+  for (double x = 1850.0; x <= 2800.0 + 1e-9; x += 10.0) f.push_back(x);
+  TimeSweepOptions s;
+  s.response = Options(TimeIntegrator::kAuto);
+  s.response.steady.tolerance = 1e-6;
+  const TimeSweep sweep = SimulateSweep(model, f, s);
+  ASSERT_TRUE(sweep.summary.ok()) << sweep.summary.BriefReport();
+  ASSERT_EQ(sweep.points.size(), 2 * f.size());
+  double worst_energy = 0.0;
+  for (const TimeSweepPoint& p : sweep.points) {
+    EXPECT_EQ(p.steady, SteadyVerdict::kSteady) << p.mesh_frequency_hz << " Hz";
+    worst_energy = std::max(worst_energy, p.max_energy_error);
+  }
+  EXPECT_LT(worst_energy, 1e-4);
+  const double f_up = JumpFrequency(sweep, SweepBranch::kUp, 1.5);
+  const double f_down = JumpFrequency(sweep, SweepBranch::kDown, 1.0 / 1.5);
+  std::printf("jumps: up %.1f Hz (HB %.1f), down %.1f Hz (HB %.1f); %.2f s, %ld steps\n", f_up,
+              up.mesh_frequency_hz, f_down, down.mesh_frequency_hz, sweep.summary.wall_time_s,
+              sweep.summary.counters.at("steps"));
+  EXPECT_NEAR(f_up, up.mesh_frequency_hz, 0.02 * up.mesh_frequency_hz);
+  EXPECT_NEAR(f_down, down.mesh_frequency_hz, 0.02 * down.mesh_frequency_hz);
+  // Both branches at one frequency inside the hysteresis loop: the up sweep's small orbit and
+  // the down sweep's large one.
+  const auto at = [&](SweepBranch b, double hz) {
+    for (const TimeSweepPoint& p : sweep.points)
+      if (p.branch == b && std::abs(p.mesh_frequency_hz - hz) < 1e-6) return p.rms_dte[0];
+    return std::nan("");
+  };
+  EXPECT_GT(at(SweepBranch::kDown, 2300.0), 1.5 * at(SweepBranch::kUp, 2300.0));
+}
+
 }  // namespace
 }  // namespace geardyn

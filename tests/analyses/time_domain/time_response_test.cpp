@@ -11,11 +11,14 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "../../../analyses/src/time_domain/td_steppers.hpp"
 #include "analyses/harmonic_balance/hb_fixtures.hpp"
 #include "geardyn/common/errors.hpp"
 #include "lib/system/hand_pair.hpp"
+#include "lib/system/periodic_fixture.hpp"
 
 namespace geardyn {
 namespace {
@@ -50,9 +53,11 @@ struct TorsionalCase {
   }
 };
 
-void CheckSteadyState(TimeIntegrator method, double f_m, double rel_tol, double tol) {
+void CheckSteadyState(TimeIntegrator method, double f_m, double rel_tol, double tol,
+                      int sparse_threshold = kSparseStateThreshold) {
   const TorsionalCase c;
   TimeResponseOptions o;
+  o.integration.sparse_threshold = sparse_threshold;
   o.integration.integrator = method;
   o.integration.relative_tolerance = rel_tol;
   o.integration.absolute_tolerance = rel_tol;
@@ -171,6 +176,78 @@ TEST(TimeResponse, MaxPeriodsGivesNoVerdict) {
   EXPECT_EQ(r.steady, SteadyVerdict::kUndetermined);
   EXPECT_EQ(r.periods, 2);
   EXPECT_EQ(r.final_state.size(), 4);  // what was computed is kept
+}
+
+// The sparse factorization of generalized-α's iteration matrix gives the same closed form.
+TEST(TimeResponse, TorsionalPairSteadyStateGeneralizedAlphaSparse) {
+  CheckSteadyState(TimeIntegrator::kGeneralizedAlpha, 4500.0, 1e-9, 1e-4, /*sparse_threshold=*/1);
+}
+
+// Independent speeds in parallel: each equals the closed form (and so the serial runs).
+TEST(TimeResponse, SpeedsInParallelEqualTheClosedForm) {
+  const TorsionalCase c;
+  TimeResponseOptions o;
+  o.integration.integrator = TimeIntegrator::kRungeKutta;
+  o.integration.relative_tolerance = o.integration.absolute_tolerance = 1e-10;
+  o.steady.tolerance = 1e-9;
+  const std::vector<double> f = {1200.0, 2500.0, 4000.0, 6000.0, 9000.0};
+  int calls = 0;
+  const std::vector<TimeResponse> r =
+      SimulateSpeeds(c.Model(), f, o, 2, [&](double, const std::string&) { ++calls; });
+  ASSERT_EQ(r.size(), f.size());
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    ASSERT_TRUE(r[i].summary.ok()) << r[i].summary.BriefReport();
+    EXPECT_EQ(r[i].mesh_frequency_hz, f[i]);
+    EXPECT_NEAR(r[i].meshes[0].rms_dte, c.Rms(f[i]), 1e-6 * c.Rms(f[i])) << f[i];
+  }
+  EXPECT_GE(calls, 1);
+}
+
+// kAuto's rule with the closed-form highest frequency ω_n = √(k/m_e) of the torsional pair (the
+// rigid mode has ω = 0): explicit when ω_n·T_m/S < limit, implicit above.
+TEST(TimeResponse, AutoPicksByStiffness) {
+  const TorsionalCase c;
+  const double wn = std::sqrt(c.p.k / c.MeanMass());
+  TimeResponseOptions o;
+  o.integration.samples_per_period = 16;
+  o.integration.auto_stiffness_limit = 2.0;
+  o.steady.max_periods = 3;
+  o.steady.tolerance = 1e-2;
+  // ω_n T/S = 2π ω_n /(S ω_m): f_m giving the ratio 0.5·limit and 2·limit.
+  const double f_explicit = wn / (16.0 * 0.5 * 2.0);
+  const double f_implicit = wn / (16.0 * 2.0 * 2.0);
+  const TimeResponse a = SimulateSteadyState(c.Model(), f_explicit, o);
+  const TimeResponse b = SimulateSteadyState(c.Model(), f_implicit, o);
+  EXPECT_EQ(a.integrator_used, TimeIntegrator::kRungeKutta);
+  EXPECT_EQ(b.integrator_used, TimeIntegrator::kGeneralizedAlpha);
+}
+
+// Slow roll of an LTV pair: K(θ)(δ − ε(θ)) = T/r1 gives the loaded TE δ = ε + T/(r1 K(θ)), and
+// the tangent channels are the core's K, K·h, K·μb² of periodic_fixture.hpp's closed form.
+TEST(TimeResponse, QuasiStaticLtvPairEqualsClosedForm) {
+  const TorsionalCase c;
+  const double a = 0.2;
+  const LinearMeshCore core(MeshCoreLevel::kBlankenshipSingh,
+                            Coefficient(test::SmoothStiffness(c.p.k, a, 0.0, c.p.b)), c.p.b,
+                            Coefficient(test::SmoothTransmissionError(c.e1, 0.0, 0.0)));
+  QuasiStaticOptions o;
+  o.samples_per_mesh = 16;
+  const QuasiStaticResult r = SimulateQuasiStatic(test::TorsionalPair(core, c.torque), o);
+  ASSERT_TRUE(r.summary.ok()) << r.summary.BriefReport();
+  ASSERT_EQ(r.theta.size(), 16);
+  const QuasiStaticMesh& m = r.meshes.at(0);
+  const double b2 = c.p.b * c.p.b / 3.0;
+  for (Eigen::Index s = 0; s < r.theta.size(); ++s) {
+    const double th = r.theta(s);
+    const double k = c.p.k * (1.0 + a * std::cos(th));
+    const double te = c.e1 * std::cos(th) + c.torque / (c.p.r1 * k);
+    EXPECT_NEAR(m.loaded_te(s), te, 1e-10 * te) << th;
+    EXPECT_NEAR(m.dte(s), te - c.e1 * std::cos(th), 1e-9 * te) << th;
+    EXPECT_NEAR(m.force(s), c.torque / c.p.r1, 1e-8 * c.torque / c.p.r1) << th;
+    EXPECT_NEAR(m.stiffness(0, s), k, 1e-12 * k);
+    EXPECT_NEAR(m.stiffness(1, s), 0.02 * c.p.k * c.p.b * std::cos(th), 1e-9 * c.p.k * c.p.b);
+    EXPECT_NEAR(m.stiffness(2, s), c.p.k * b2 * (1.0 + 0.05 * std::sin(th)), 1e-9 * c.p.k * b2);
+  }
 }
 
 }  // namespace

@@ -95,6 +95,9 @@ struct TimeIntegrationOptions {
   /// Keep every `channel_decimation`-th sample of the cores' channel histories, in [1, 65536].
   int channel_decimation = 1;
   bool record_element_forces = true;  ///< per-element force histories
+  /// Coordinates (system DOF + internal) from which generalized-α factors its iteration matrix
+  /// with Eigen's SparseLU instead of a dense LU, in [1, 1e7].
+  int sparse_threshold = kSparseStateThreshold;
   /// False (with the field, value and bound in `why`) on an invalid value.
   bool IsValid(std::string* why) const;
 };
@@ -115,7 +118,8 @@ struct SteadyStateOptions {
   bool IsValid(std::string* why) const;
 };
 
-/// Three-valued steady-state verdict: kUndetermined whenever the run failed.
+/// Three-valued steady-state verdict: kUndetermined whenever the run failed or ended without
+/// meeting the criterion (status kNotConverged); kNotSteady is reserved (not produced yet).
 enum class SteadyVerdict { kSteady, kNotSteady, kUndetermined };
 /// "steady", "not_steady", "undetermined".
 const char* ToString(SteadyVerdict verdict);
@@ -256,5 +260,41 @@ struct TimeDomainStatic {
 };
 /// @throws InvalidInput on a non-finite θ₀ or a model without meshes.
 TimeDomainStatic SolveTimeDomainStatic(const SystemModel& model, double theta0 = 0.0);
+
+/// @brief Options of the quasi-static (slow-roll) run.
+struct QuasiStaticOptions {
+  int samples_per_mesh = 64;  ///< θ samples per mesh period, in [1, 65536]
+  /// Samples span period_multiple × P mesh periods (P the model's hunting period), in [1, 1000].
+  int period_multiple = 1;
+  /// False (with the field, value and bound in `why`) on an invalid value.
+  bool IsValid(std::string* why) const;
+};
+
+/// @brief The quasi-static quantities of one mesh along θ.
+struct QuasiStaticMesh {
+  std::string name;
+  VectorX loaded_te;  ///< (samples) δ_η at the static equilibrium: the loaded static TE [m]
+  VectorX dte;        ///< (samples) δ_η − ε_η (probes.hpp) [m]
+  VectorX force;      ///< (samples) F_η [N] (0 for a NonlinearMeshCore)
+  /// (3 × samples) tangent mesh stiffness channels (K, K·h, K·μ·b²) [N/m, N, N·m] with
+  /// K2 = [[K, −K·h], [−K·h, K·μ·b²]] = ∂F/∂δ (mesh_core.hpp), for a NonlinearMeshCore its
+  /// internal coordinates condensed out and K2 = G⁺ᵀ K₁₂ G⁺ (G⁺ the pseudo-inverse of G) —
+  /// what an LTV mesh's [mesh.parameters] tables hold.
+  MatrixX stiffness;
+};
+
+/// @brief Result of SimulateQuasiStatic.
+struct QuasiStaticResult {
+  VectorX theta;  ///< (samples) system phase θ [rad]
+  std::vector<QuasiStaticMesh> meshes;
+  Summary summary;  ///< a failed static solve ends the run (samples so far kept)
+};
+
+/// @brief Slow roll under load: the static equilibrium (SolveTimeDomainStatic) at every θ
+/// sample, each started from the previous one, with the loaded TE and tangent mesh stiffness.
+/// @throws InvalidInput on invalid options or a model without meshes.
+QuasiStaticResult SimulateQuasiStatic(const SystemModel& model, const QuasiStaticOptions& options,
+                                      const TimeProgress& progress = {},
+                                      const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace geardyn
