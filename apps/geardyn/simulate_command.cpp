@@ -82,6 +82,20 @@ class InterruptScope {
   void (*previous_)(int) = SIG_DFL;
 };
 
+// The SceneSystemOptions of the time-domain runs: analysis "simulate", and tooth-contact meshes
+// (model = "contact", time-domain only) allowed where the scene builder knows them (the field
+// arrives with the contact model; the requires-clause keeps this file building without it).
+template <typename Options>
+void AllowContactMeshes(Options& so) {
+  if constexpr (requires { so.allow_contact_meshes = true; }) so.allow_contact_meshes = true;
+}
+SceneSystemOptions TimeDomainSystemOptions() {
+  SceneSystemOptions so;
+  so.analysis = "simulate";
+  AllowContactMeshes(so);
+  return so;
+}
+
 void Validate(const SimulateOptions& o) {
   TimeIntegrator integrator;
   GEARDYN_THROW_UNLESS(
@@ -175,7 +189,7 @@ HbOverlay ComputeOverlay(const SimulateOptions& o, const Scene& scene_t, double 
   overlay.torque_nm = torque;
   SceneSystemOptions so;
   so.analysis = "hb";
-  SystemModel model = BuildSceneSystem(scene_t, so).model;
+  SystemModel model = BuildSceneSystem(scene_t, TimeDomainSystemOptions()).model;
   if (HasNonlinearCore(model)) {
     // The slice model of the same pair (what the Kim figures compare with).
     std::vector<std::string> overrides = o.scene.overrides;
@@ -252,9 +266,7 @@ int RunQuasiStatic(const SimulateOptions& o, const Scene& scene, const std::vect
   bool ok = true;
   for (const double torque : torques) {
     const Scene scene_t = AtTorque(scene, torque);
-    SceneSystemOptions so;
-    so.analysis = "simulate";
-    const SceneSystem built = BuildSceneSystem(scene_t, so);
+    const SceneSystem built = BuildSceneSystem(scene_t, TimeDomainSystemOptions());
     std::vector<double> b;
     for (const MeshDef& m : scene_t.meshes) b.push_back(m.geometry.face_width / 2.0);
     const QuasiStaticResult qs = ComputeQuasiStatic(built.model, b, o.samples_per_period);
@@ -385,9 +397,7 @@ int RunSimulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) 
   for (const double torque : torques) {
     if (g_cancel.load()) break;
     const Scene scene_t = AtTorque(scene, torque);
-    SceneSystemOptions so;
-    so.analysis = "simulate";
-    const SceneSystem built = BuildSceneSystem(scene_t, so);
+    const SceneSystem built = BuildSceneSystem(scene_t, TimeDomainSystemOptions());
     for (const std::string& w : built.warnings) {
       if (std::find(warnings.begin(), warnings.end(), "scene: " + w) == warnings.end()) {
         warnings.push_back("scene: " + w);
