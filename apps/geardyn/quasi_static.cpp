@@ -15,6 +15,10 @@
 namespace geardyn::app {
 namespace {
 
+// Relative difference of K and STE one mesh cycle apart accepted as "identical teeth" [-]: the
+// static solves converge to round-off, so anything above 1e-6 is a real tooth-to-tooth change.
+constexpr double kCyclePeriodicityTol = 1e-6;
+
 // The mesh force pair and its 2×2 tangent at the static state.
 struct PairTangent {
   Vector2 force = Vector2::Zero();      // F = [F_η [N], M_ζ [N·m]]
@@ -78,7 +82,12 @@ QuasiStaticResult ComputeQuasiStatic(const SystemModel& model,
   long solves = 0;
   for (int k = 0; k < model.num_meshes(); ++k) {
     const SystemMesh& mesh = model.meshes()[k];
-    GEARDYN_THROW_UNLESS(PeriodMeshes(mesh.core) == 1,
+    const bool contact_core =
+        std::holds_alternative<std::shared_ptr<const NonlinearMeshCore>>(mesh.core);
+    // Linear and slice cores repeat over more than one mesh cycle only through tooth errors. A
+    // contact core counts its teeth apart (P = tooth-count period) even when they are identical:
+    // checked below by one more static solve one mesh cycle later.
+    GEARDYN_THROW_UNLESS(contact_core || PeriodMeshes(mesh.core) == 1,
                          "--quasi-static: mesh "
                              << mesh.name << " repeats over " << PeriodMeshes(mesh.core)
                              << " mesh cycles (tooth errors), but a [mesh.parameters] table holds "
@@ -131,6 +140,25 @@ QuasiStaticResult ComputeQuasiStatic(const SystemModel& model,
       p.transmission_error.push_back(eps(0));
       out.loaded_ste.push_back(delta(0));
       out.force.push_back(t.force(0));
+    }
+    if (contact_core && PeriodMeshes(mesh.core) > 1 && samples > 0) {
+      // The cycle after: the same K and STE at θ + 2π, or the teeth differ.
+      const double theta = (2.0 * std::numbers::pi - mesh.phase_offset) / mesh.phase_ratio;
+      const TimeDomainStatic st = SolveTimeDomainStatic(model, theta);
+      ++solves;
+      const VectorX q = st.state.head(model.num_dofs());
+      const double ste = CalcMeshDeflection(model, MeshIndex(k), q)(0);
+      const PairTangent t =
+          NonlinearTangent(mesh, *std::get<std::shared_ptr<const NonlinearMeshCore>>(mesh.core),
+                           2.0 * std::numbers::pi, st.state, model.num_dofs(), internal_offset[k]);
+      const double k0 = out.parameters.stiffness.front(), ste0 = out.loaded_ste.front();
+      GEARDYN_THROW_UNLESS(
+          st.summary.ok() && std::abs(t.stiffness(0, 0) - k0) <= kCyclePeriodicityTol * k0 &&
+              std::abs(ste - ste0) <= kCyclePeriodicityTol * std::abs(ste0),
+          "--quasi-static: mesh " << mesh.name << ": the next mesh cycle differs (K " << k0 << " → "
+                                  << t.stiffness(0, 0) << " N/m, STE " << ste0 << " → " << ste
+                                  << " m): the teeth are not identical, and a [mesh.parameters] "
+                                     "table holds one mesh cycle");
     }
     result.meshes.push_back(std::move(out));
   }

@@ -48,9 +48,11 @@ inline constexpr int kMaxQuasiStaticSamples = 4096;
 /// @param[in] model the system (any mesh-core form).
 /// @param[in] half_face_widths (num_meshes) b [m] per mesh (for μ).
 /// @param[in] samples S per mesh cycle, in [1, kMaxQuasiStaticSamples].
-/// @throws InvalidInput naming --samples-per-period (S out of range) or --quasi-static (a mesh
-///   whose parameters repeat over more than one mesh cycle: tooth errors, which one
-///   `[mesh.parameters]` cycle cannot hold; or a model without meshes).
+/// @throws InvalidInput naming --samples-per-period (S out of range) or --quasi-static: a linear
+///   or slice mesh whose parameters repeat over more than one mesh cycle (tooth errors, which one
+///   `[mesh.parameters]` cycle cannot hold); a contact (NonlinearMeshCore) mesh with P > 1 whose
+///   K or STE one mesh cycle later differs by more than 1e-6 (its teeth are not identical); a
+///   model without meshes.
 QuasiStaticResult ComputeQuasiStatic(const SystemModel& model,
                                      const std::vector<double>& half_face_widths, int samples);
 
