@@ -30,6 +30,14 @@ TdStepper::TdStepper(const TdSystem& sys, const TimeIntegrationOptions& options,
 
 void TdStepper::Reset(double t, const VectorX& x, const VectorX& v) {
   t_ = t;
+  if (sys_.has_breaks) {
+    // Starting on a break (θ₀ = 0 is a table node): begin just past it, so that no evaluation
+    // straddles it.
+    double margin = 0.0;
+    const double back = t - 1e-6 * 2.0 * std::numbers::pi / omega_;
+    const double tb = sys_.NextBreakTime(back, theta0_, omega_, &margin);
+    if (std::abs(tb - t) <= margin) t_ = tb + margin;
+  }
   x_ = x;
   v_ = v;
   ResetQuadrature();
@@ -115,7 +123,10 @@ bool TdStepper::AdvanceTo(double t1) {
     // After an event keep the step that reached it (the next one starts on the new side).
     h_ = std::min(h_next, max_step_);
   }
-  t_ = t1;
+  // Within t_tol of t1: land on it. Past it (a break crossed at t1 moved t_ beyond by the gap):
+  // stay there, so that the next step starts on the far side of the break and no evaluation
+  // straddles it.
+  if (t_ < t1) t_ = t1;
   return true;
 }
 

@@ -48,12 +48,41 @@ Matrix2 SampledSliceDamping(const SliceMeshCore& core, double c_m) {
   return sum / samples;
 }
 
-/// Appends the jumps of a piecewise-constant coefficient; true when it is one.
-bool AddBreaks(const Coefficient& coef, std::vector<std::pair<VectorX, double>>* breaks) {
-  const auto* pc = std::get_if<PiecewiseConstantCoefficient>(&coef);
-  if (pc == nullptr || pc->num_intervals() < 2) return pc != nullptr;
-  breaks->emplace_back(pc->breakpoints(), Period(coef));
-  return true;
+/// Appends the jumps of a piecewise-constant coefficient and the nodes of a table (kinks of its
+/// linear interpolation); returns the coefficient's shape.
+CoefficientShape AddBreaks(const Coefficient& coef,
+                           std::vector<std::pair<VectorX, double>>* breaks) {
+  if (const auto* pc = std::get_if<PiecewiseConstantCoefficient>(&coef)) {
+    if (pc->num_intervals() >= 2) breaks->emplace_back(pc->breakpoints(), Period(coef));
+    return CoefficientShape::kStepwise;
+  }
+  if (const auto* tc = std::get_if<TableCoefficient>(&coef)) {
+    VectorX nodes(tc->num_samples());
+    for (int s = 0; s < tc->num_samples(); ++s) nodes(s) = tc->sample_theta(s);
+    breaks->emplace_back(nodes, Period(coef));
+    return CoefficientShape::kKinked;
+  }
+  return CoefficientShape::kSmooth;
+}
+
+/// Half-width of the phase gap stepped across at a break of mesh phase θ_k [rad]: well above
+/// the rounding of θ_k, far below any physical scale (≈ 1.6e-10 mesh periods).
+double BreakGap(double theta_k) { return 1e-9 + 1e-13 * std::abs(theta_k); }
+
+/// Step of the central difference of the phase power for a coefficient of the given shape:
+/// smooth kPhaseStep; a table a quarter of the break gap, so that both points lie in the
+/// interval of the evaluation point (the steps end at the nodes, the difference of a linear
+/// piece is then exact); 0 for stepwise (held: its jumps are phase events).
+double PhaseStep(CoefficientShape shape, double theta_k) {
+  switch (shape) {
+    case CoefficientShape::kSmooth:
+      return kPhaseStep;
+    case CoefficientShape::kKinked:
+      return 0.25 * BreakGap(theta_k);
+    case CoefficientShape::kStepwise:
+      return 0.0;
+  }
+  return 0.0;
 }
 
 /// E of a linear core at δ with K2 at θ_K and ε at θ_ε: ½ eᵀK2e, e = δ − ε [J].
@@ -87,18 +116,18 @@ TdSystem::TdSystem(const SystemModel& m) : model(m) {
                      t.kind = TdMeshTerm::Kind::kLinear;
                      t.linear = &core;
                      if (!core.is_mean_lti()) {
-                       t.stepwise_stiffness = AddBreaks(core.stiffness(), &t.breaks);
+                       t.stiffness_shape = AddBreaks(core.stiffness(), &t.breaks);
                      }
                      if (core.transmission_error()) {
-                       t.stepwise_offset = AddBreaks(*core.transmission_error(), &t.breaks);
+                       t.offset_shape = AddBreaks(*core.transmission_error(), &t.breaks);
                      }
                    },
                    [&](const SliceMeshCore& core) {
                      t.kind = TdMeshTerm::Kind::kSlice;
                      t.slice = &core;
-                     t.stepwise_stiffness = AddBreaks(core.stiffness(), &t.breaks);
+                     t.stiffness_shape = AddBreaks(core.stiffness(), &t.breaks);
                      if (core.separation()) {
-                       t.stepwise_offset = AddBreaks(*core.separation(), &t.breaks);
+                       t.offset_shape = AddBreaks(*core.separation(), &t.breaks);
                      }
                      t.num_switching = core.num_slices() * (core.has_back_flank() ? 2 : 1);
                      any_slice = true;
@@ -221,9 +250,7 @@ double TdSystem::NextBreakTime(double t, double theta0, double omega, double* ma
     const double rate = term.phase_ratio * omega;
     if (term.breaks.empty() || rate == 0.0) continue;
     const double th = term.phase_ratio * theta + term.phase_offset;
-    // Half-width of the gap stepped across: well above the rounding of θ_k, far below any
-    // physical time scale (1e-9 rad ≈ 1.6e-10 mesh periods).
-    const double gap = 1e-9 + 1e-13 * std::abs(th);
+    const double gap = BreakGap(th);
     for (const auto& [b, period] : term.breaks) {
       const double u = th - period * std::floor(th / period);  // in [0, period)
       double d = std::numeric_limits<double>::infinity();
@@ -346,48 +373,55 @@ void EvalForces(const TdSystem& sys, TdWorkspace& ws, double theta, double theta
       const Vector2 e = delta - EvalTransmissionError(core, th);
       F = J * e + C2 * rate;
       ws.mesh_energy += 0.5 * e.dot(J * e);
-      // Smooth parts only: a piecewise-constant coefficient's jumps are phase events.
-      const double hk = t.stepwise_stiffness ? 0.0 : kPhaseStep;
-      const double he = t.stepwise_offset ? 0.0 : kPhaseStep;
-      if ((hk > 0.0 && Classify(core) != TimeDependence::kConstant) ||
-          (he > 0.0 && core.has_transmission_error())) {
-        ws.mesh_phase_power += th_rate *
-                               (LinearEnergy(core, th + hk, th + he, delta) -
-                                LinearEnergy(core, th - hk, th - he, delta)) /
-                               (2.0 * kPhaseStep);
+      // P = θ̇_k (∂E/∂θ_K + ∂E/∂θ_ε): one central difference per coefficient, with the step of
+      // its shape (stepwise: held, its jumps are phase events).
+      const bool varies = Classify(core) != TimeDependence::kConstant;
+      const double hk = varies ? PhaseStep(t.stiffness_shape, th) : 0.0;
+      const double he = core.has_transmission_error() ? PhaseStep(t.offset_shape, th) : 0.0;
+      double dE = 0.0;
+      if (hk > 0.0) {
+        const double tp = th + hk, tm = th - hk;
+        dE += (LinearEnergy(core, tp, th, delta) - LinearEnergy(core, tm, th, delta)) / (tp - tm);
       }
+      if (he > 0.0) {
+        const double tp = th + he, tm = th - he;
+        dE += (LinearEnergy(core, th, tp, delta) - LinearEnergy(core, th, tm, delta)) / (tp - tm);
+      }
+      ws.mesh_phase_power += th_rate * dE;
       ws.contacts[k] = -1;
     } else {
       // Slice force with contact loss and back flank; the constant damper C̄2 of the HB.
       const SliceMeshCore& core = *t.slice;
       SliceMeshWorkspace& sw = *ws.slice[k];
       const SliceForce f = EvalSliceForce(core, sw, th, delta(0), delta(1));
-      // Phase power from the smooth coefficients only (jumps are phase events).
+      // Phase power: one central difference per coefficient (stiffness k_s, separation e_s) with
+      // the step of its shape (stepwise: held, its jumps are phase events).
       VectorX& ks = ws.slice_k[k];
       VectorX& es = ws.slice_e[k];
-      double u_pm[2] = {0.0, 0.0};
-      if (!t.stepwise_stiffness || (core.separation() && !t.stepwise_offset)) {
-        for (int side = 0; side < 2; ++side) {
-          const double shift = side == 0 ? kPhaseStep : -kPhaseStep;
-          if (t.stepwise_stiffness) {
-            ks = sw.stiffness;
-          } else {
-            Evaluate(core.stiffness(), th + shift, ks);
-          }
-          if (!core.separation() || t.stepwise_offset) {
-            es = sw.separation;
-          } else {
-            Evaluate(*core.separation(), th + shift, es);
-          }
-          u_pm[side] = CalcSliceForce(core, ks, es, delta(0), delta(1)).energy;
-        }
+      double dU = 0.0;
+      const double hk = PhaseStep(t.stiffness_shape, th);
+      if (hk > 0.0) {
+        const double tp = th + hk, tm = th - hk;
+        Evaluate(core.stiffness(), tp, ks);
+        const double up = CalcSliceForce(core, ks, sw.separation, delta(0), delta(1)).energy;
+        Evaluate(core.stiffness(), tm, ks);
+        const double um = CalcSliceForce(core, ks, sw.separation, delta(0), delta(1)).energy;
+        dU += (up - um) / (tp - tm);
       }
-      const double u_plus = u_pm[0], u_minus = u_pm[1];
+      const double he = core.separation() ? PhaseStep(t.offset_shape, th) : 0.0;
+      if (he > 0.0) {
+        const double tp = th + he, tm = th - he;
+        Evaluate(*core.separation(), tp, es);
+        const double up = CalcSliceForce(core, sw.stiffness, es, delta(0), delta(1)).energy;
+        Evaluate(*core.separation(), tm, es);
+        const double um = CalcSliceForce(core, sw.stiffness, es, delta(0), delta(1)).energy;
+        dU += (up - um) / (tp - tm);
+      }
       C2 = t.mean_damping;
       J = f.jacobian;
       F = f.force + C2 * rate;
       ws.mesh_energy += f.energy;
-      ws.mesh_phase_power += th_rate * (u_plus - u_minus) / (2.0 * kPhaseStep);
+      ws.mesh_phase_power += th_rate * dU;
       ws.contacts[k] = f.num_loaded;
       // Switching functions: drive gap a_s and back gap a_s + j of every slice; watched only
       // where the slice has stiffness (a gap of an unloaded slice switches nothing).

@@ -16,6 +16,9 @@
 
 namespace geardyn::internal {
 
+/// @brief How a θ-coefficient varies between its samples.
+enum class CoefficientShape { kSmooth, kStepwise, kKinked };
+
 /// @brief How one mesh enters the time-domain equation.
 struct TdMeshTerm {
   enum class Kind { kLinear, kSlice, kNonlinear };
@@ -34,12 +37,13 @@ struct TdMeshTerm {
   int num_internal = 0;      ///< internal coordinates (nonlinear cores)
   int switching_offset = 0;  ///< first switching function of this mesh
   int num_switching = 0;     ///< switching functions of this mesh
-  /// Whether the stiffness / transmission-error (linear) or stiffness / separation (slice)
-  /// coefficient is piecewise constant: its jumps are crossed as phase events (TdSystem::
-  /// NextBreakTime) and it is held constant in the phase power.
-  bool stepwise_stiffness = false, stepwise_offset = false;
-  /// Jump phases of the piecewise-constant coefficients: per coefficient, the breakpoints in
-  /// [0, period) [rad] and the period [rad].
+  /// Shape of the stiffness and of the transmission-error (linear) / separation (slice)
+  /// coefficient: stepwise ones jump (phase events with an energy jump, held in the phase
+  /// power), tables have kinks at their nodes (phase events: steps end there).
+  CoefficientShape stiffness_shape = CoefficientShape::kSmooth;
+  CoefficientShape offset_shape = CoefficientShape::kSmooth;
+  /// Break phases (jumps of stepwise coefficients, nodes of tables): per coefficient, the
+  /// phases in [0, period) [rad] and the period [rad].
   std::vector<std::pair<VectorX, double>> breaks;
 };
 

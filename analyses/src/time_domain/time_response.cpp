@@ -26,6 +26,9 @@ using internal::TdScales;
 using internal::TdSystem;
 using internal::TdWorkspace;
 
+/// Growth of a mesh's max |DTE| over its first period beyond which a run is unbounded [-].
+constexpr double kGrowthLimit = 1e4;
+
 /// Worse of two statuses (kSuccess < kToleranceNotMet < kNotConverged < kNumericalIssue).
 Status Worse(Status a, Status b) {
   auto rank = [](Status s) {
@@ -159,6 +162,8 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
   };
   VectorX prev_x = rigid_projector(x0), prev_v = rigid_projector(v0);
   int consecutive = 0;
+  std::vector<double> first_level(static_cast<std::size_t>(num_meshes), 0.0);
+  int grown = -1;
   bool steady = false;
   bool failed = false;
   long period_index = 0;
@@ -247,7 +252,7 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
     e.input_work = sys.load0.dot(stepper->x() - x_begin) + stepper->phase_work();
     e.dissipated = stepper->dissipated();
     const double scale = std::max({std::abs(e.input_work), std::abs(e.stored_change),
-                                   std::abs(e.dissipated), 1e-12 * std::abs(s_begin)});
+                                   std::abs(e.dissipated), 1e-9 * std::abs(s_begin)});
     e.relative_error =
         scale > 0.0 ? std::abs(e.input_work - e.stored_change - e.dissipated) / scale : 0.0;
     out.energy.push_back(e);
@@ -275,12 +280,39 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
     const VectorX x = rigid_projector(stepper->x());
     const VectorX v = rigid_projector(stepper->v());
     const double xn = x.lpNorm<Eigen::Infinity>(), vn = v.lpNorm<Eigen::Infinity>();
+    // Velocities against max(‖v‖, ω_m‖x‖): at rest ‖v‖ is round-off and its relative change
+    // meaningless.
     double change = xn > 0.0 ? (x - prev_x).lpNorm<Eigen::Infinity>() / xn : 0.0;
-    if (vn > 0.0) change = std::max(change, (v - prev_v).lpNorm<Eigen::Infinity>() / vn);
+    const double v_scale = std::max(vn, omega * xn);
+    if (v_scale > 0.0) {
+      change = std::max(change, (v - prev_v).lpNorm<Eigen::Infinity>() / v_scale);
+    }
+    // Unbounded growth (parametric instability, an undamped resonance): max |DTE| of a mesh
+    // beyond kGrowthLimit × its first period's ends the run without a steady state.
+    for (int k = 0; k < num_meshes; ++k) {
+      const auto kk = static_cast<std::size_t>(k);
+      const double level = std::max(std::abs(stats[kk].lo), std::abs(stats[kk].hi));
+      if (p == 0) first_level[kk] = level;
+      if (first_level[kk] > 0.0 && level > kGrowthLimit * first_level[kk]) grown = k;
+    }
+    if (grown >= 0) {
+      const auto kk = static_cast<std::size_t>(grown);
+      summary.status = Status::kNotConverged;
+      summary.message =
+          "the response grows without bound: max |DTE| of mesh '" + model.meshes()[kk].name +
+          "' went from " + std::to_string(first_level[kk]) + " m to " +
+          std::to_string(std::max(std::abs(stats[kk].lo), std::abs(stats[kk].hi))) + " m in " +
+          std::to_string(p + 1) +
+          " periods (parametric instability or an undamped resonance: no steady state)";
+      failed = true;
+      break;
+    }
     for (int k = 0; k < num_meshes; ++k) {
       const auto kk = static_cast<std::size_t>(k);
       const double rms = stats[kk].Rms();
-      const double denom = std::max(rms, 1e-9 * std::abs(stats[kk].Mean()));
+      // RMS changes relative to max(RMS, 1e-6·|mean|): a response at rest has an RMS of
+      // round-off.
+      const double denom = std::max(rms, 1e-6 * std::abs(stats[kk].Mean()));
       if (prev_rms[kk] < 0.0) {
         change = std::max(change, 1.0);
       } else if (denom > 0.0) {
@@ -462,13 +494,27 @@ TimeSweep SimulateSweep(const SystemModel& model, const std::vector<double>& fre
       }
       if (!r.summary.ok()) {
         sweep.summary.status = Worse(sweep.summary.status, r.summary.status);
-        sweep.summary.warnings.push_back(std::string(ToString(branch)) + " branch stopped at " +
-                                         std::to_string(f) + " Hz: " + r.summary.message);
         if (sweep.summary.message.empty()) sweep.summary.message = r.summary.message;
-        carried.resize(0);  // the next branch starts afresh
-        carried_phase = options.response.initial_phase;
         if (r.summary.message == "cancelled") return sweep;
-        break;
+        // Not steady within max_periods: the point is kept without a verdict and the sweep goes
+        // on from its last state (a quasi-periodic or slowly settling response is still the
+        // branch). A numerical failure ends the branch.
+        const bool fatal = r.summary.status == Status::kNumericalIssue || r.final_state.size() == 0;
+        sweep.summary.warnings.push_back(std::string(ToString(branch)) + " branch " +
+                                         (fatal ? "stopped" : "not steady") + " at " +
+                                         std::to_string(f) + " Hz: " + r.summary.message);
+        if (fatal) {
+          carried.resize(0);  // the next branch starts afresh
+          carried_phase = options.response.initial_phase;
+          break;
+        }
+        if (r.summary.message.rfind("the response grows", 0) == 0) {
+          // Unbounded here (an instability region): the next point starts afresh, the branch
+          // goes on.
+          carried.resize(0);
+          carried_phase = options.response.initial_phase;
+          continue;
+        }
       }
       carried = r.final_state;
       carried_phase = r.final_phase;

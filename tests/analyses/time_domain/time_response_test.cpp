@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <complex>
 #include <numbers>
@@ -17,6 +18,7 @@
 #include "../../../analyses/src/time_domain/td_steppers.hpp"
 #include "analyses/harmonic_balance/hb_fixtures.hpp"
 #include "geardyn/common/errors.hpp"
+#include "geardyn/system/static_deflection.hpp"
 #include "lib/system/hand_pair.hpp"
 #include "lib/system/periodic_fixture.hpp"
 
@@ -247,6 +249,105 @@ TEST(TimeResponse, QuasiStaticLtvPairEqualsClosedForm) {
     EXPECT_NEAR(m.stiffness(0, s), k, 1e-12 * k);
     EXPECT_NEAR(m.stiffness(1, s), 0.02 * c.p.k * c.p.b * std::cos(th), 1e-9 * c.p.k * c.p.b);
     EXPECT_NEAR(m.stiffness(2, s), c.p.k * b2 * (1.0 + 0.05 * std::sin(th)), 1e-9 * c.p.k * b2);
+  }
+}
+
+// A table stiffness (linear interpolation: kinks at its nodes, stepped to as phase events)
+// against the test-only GSL rk8pd reference of hb_fixtures.hpp (M q̈ + C(θ) q̇ + K(θ) q = f(θ)
+// assembled by the workspace kernels on all DOFs): same steady DTE; energy balance < 1e-4.
+TEST(TimeResponse, TableStiffnessEqualsReferenceIntegration) {
+  const TorsionalCase c;
+  const int nodes = 16;
+  MatrixX samples(3, nodes);
+  for (int s = 0; s < nodes; ++s) {
+    const double k = c.p.k * (1.0 + 0.3 * std::cos(2.0 * kPi * s / nodes));
+    samples.col(s) << k, 0.0, k * c.p.b * c.p.b / 3.0;
+  }
+  const LinearMeshCore core(MeshCoreLevel::kBlankenshipSingh, TableCoefficient(samples), c.p.b,
+                            std::nullopt, MeshDamping::FromCoefficient(c.DampingCoefficient()));
+  const SystemModel model = test::TorsionalPair(core, c.torque);
+  const double f = 2000.0;
+  TimeResponseOptions o;
+  o.integration.integrator = TimeIntegrator::kRungeKutta;
+  o.integration.relative_tolerance = o.integration.absolute_tolerance = 1e-10;
+  o.steady.tolerance = 1e-9;
+  const TimeResponse r = SimulateSteadyState(model, f, o);
+  ASSERT_TRUE(r.summary.ok()) << r.summary.BriefReport();
+  EXPECT_GE(r.summary.counters.at("coefficient_jumps"), nodes * r.periods);
+  EXPECT_LT(r.max_energy_error, 1e-4);
+  const test::OdeSteadyState ref = test::IntegrateSteadyState(model, f, 300, 64);
+  const VectorX d = ref.dte.row(0).transpose();
+  const double mean = d.mean();
+  const double rms = std::sqrt((d.array() - mean).square().mean());
+  EXPECT_NEAR(r.meshes[0].mean_dte, mean, 1e-6 * mean);
+  EXPECT_NEAR(r.meshes[0].rms_dte, rms, 1e-5 * rms);
+}
+
+// Cancellation from the progress callback after 3 periods: status kNotConverged "cancelled", no
+// verdict, what was integrated kept.
+TEST(TimeResponse, CancelKeepsWhatWasComputed) {
+  const TorsionalCase c;
+  std::atomic<bool> cancel{false};
+  int periods = 0;
+  TimeResponseOptions o;
+  o.steady.tolerance = 1e-12;
+  const TimeResponse r = SimulateSteadyState(
+      c.Model(), 4500.0, o,
+      [&](double, const std::string&) {
+        if (++periods == 3) cancel = true;
+      },
+      &cancel);
+  EXPECT_EQ(r.summary.status, Status::kNotConverged);
+  EXPECT_EQ(r.summary.message, "cancelled");
+  EXPECT_EQ(r.steady, SteadyVerdict::kUndetermined);
+  EXPECT_EQ(r.periods, 3);
+  EXPECT_EQ(r.energy.size(), 3u);
+  EXPECT_EQ(r.final_state.size(), 4);
+}
+
+// Mathieu's principal parametric resonance: K = k(1 + a cos θ) at ω_m = 2ω_n is unstable when
+// a/2 exceeds twice the damping ratio (a = 0.4 ≫ 4ζ = 0.04): the run ends early with "grows
+// without bound" and no verdict. At ω_m = 1.5 ω_n (between the tongues at 2 and 1) it is steady.
+TEST(TimeResponse, ParametricInstabilityEndsWithoutVerdict) {
+  TorsionalCase c;
+  c.zeta = 0.01;
+  const LinearMeshCore core(MeshCoreLevel::kBlankenshipSingh,
+                            Coefficient(test::SmoothStiffness(c.p.k, 0.4, 0.0, c.p.b)), c.p.b,
+                            std::nullopt, MeshDamping::FromCoefficient(c.DampingCoefficient()));
+  const SystemModel model = test::TorsionalPair(core, c.torque);
+  const double fn = std::sqrt(c.p.k / c.MeanMass()) / (2.0 * kPi);
+  TimeResponseOptions o;
+  o.steady.max_periods = 2000;
+  const TimeResponse u = SimulateSteadyState(model, 2.0 * fn, o);
+  EXPECT_EQ(u.summary.status, Status::kNotConverged);
+  EXPECT_NE(u.summary.message.find("grows without bound"), std::string::npos) << u.summary.message;
+  EXPECT_EQ(u.steady, SteadyVerdict::kUndetermined);
+  EXPECT_LT(u.periods, 200);
+  const TimeResponse s = SimulateSteadyState(model, 1.5 * fn, o);
+  EXPECT_TRUE(s.summary.ok()) << s.summary.BriefReport();
+  EXPECT_EQ(s.steady, SteadyVerdict::kSteady);
+}
+
+// Element (bearing) forces: for the LTI hand pair (constant stiffness, no TE) the recorded
+// bearing forces at steady state equal the static reactions of SolveStaticDeflection.
+TEST(TimeResponse, BearingForcesOfAnLtiPairAreTheStaticReactions) {
+  const test::HandPairParams p;
+  const LinearMeshCore core(MeshCoreLevel::kBlankenshipSingh,
+                            ConstantCoefficient(Vector3(p.k, 0.0, p.k * p.b * p.b / 3.0)), p.b,
+                            std::nullopt, MeshDamping::FromRatio(0.05));
+  const SystemModel model = test::LoadedPair(core, 150.0, 0.02);
+  const StaticDeflectionResult st = SolveStaticDeflection(model);
+  TimeResponseOptions o;
+  o.steady.tolerance = 1e-8;
+  const TimeResponse r = SimulateSteadyState(model, 3000.0, o);
+  ASSERT_TRUE(r.summary.ok()) << r.summary.BriefReport();
+  ASSERT_EQ(r.element_forces.size(), model.elements().size());
+  for (std::size_t e = 0; e < r.element_forces.size(); ++e) {
+    const VectorX mean = r.element_forces[e].rowwise().mean();
+    const double scale = st.element_forces[e].norm();
+    EXPECT_LT((mean - st.element_forces[e]).norm(), 1e-6 * scale) << e;
+    // Constant in time: the LTI pair without excitation is at rest.
+    EXPECT_LT((r.element_forces[e].colwise() - mean).cwiseAbs().maxCoeff(), 1e-6 * scale);
   }
 }
 

@@ -17,19 +17,27 @@
 ///
 /// **Integrators** (TimeIntegrator; the selection rule of kAuto is in TimeIntegrationOptions):
 /// * kGeneralizedAlpha — Chung & Hulbert (1993) generalized-α with spectral radius ρ∞, Newton
-///   with the analytic tangent (dense LU below kSparseStateThreshold coordinates, SparseLU
-///   above), adaptive step from the local error estimate of Zienkiewicz & Xie (1991);
-/// * kRungeKutta — GSL gsl_odeiv2 rk8pd (Dormand–Prince 8(7)) with its own step control.
+///   with the analytic tangent (dense LU below `sparse_threshold` coordinates, SparseLU above),
+///   adaptive step from the local error estimate of Zienkiewicz & Xie (1991); second order;
+/// * kRungeKutta — GSL gsl_odeiv2 rk8pd (Prince–Dormand 8(7)) single steps with this module's
+///   step control.
 /// Both locate contact switches: the switching functions (the cores' `switching`, and for slice
-/// cores the slice gaps a_s and a_s + j) are watched at every accepted step; a sign change
-/// inside a step is located by bisection on re-steps to `event_time_tolerance` and the
-/// integration restarts there.
+/// cores the slice gaps a_s and a_s + j where k_s > 0) are watched at every accepted step; a sign
+/// change inside a step is located by Illinois regula falsi on re-steps to
+/// `event_time_tolerance` and the integration restarts there. Jumps of piecewise-constant
+/// coefficients and the nodes of table coefficients are phase events: steps end there (the
+/// energy jump of a stepwise stiffness is booked as phase work).
 ///
-/// **Energy balance** per recorded period: input work W = ∫(f₀ᵀv + ΣP_k) dt, stored change
+/// **Energy balance** per integrated period: input work W = f₀ᵀΔx + ∫ΣP_k dt, stored change
 /// ΔS = Δ(T + V₀ + ΣE_k), dissipation D = ∫(vᵀC₀v + ΣD_k) dt (D_k, P_k of the mesh forces: for
 /// linear/slice cores the damper power and the phase power ∂E_k/∂θ·θ̇), integrated with the
-/// solution (extra quadrature states on the Runge–Kutta path, the trapezoidal rule consistent
-/// with the step on the generalized-α path). Relative error |W − ΔS − D| / max(|W|, D, |ΔS|).
+/// solution (two extra ODE states on the Runge–Kutta path; on the generalized-α path the rule on
+/// the nodes 0, α-point, 1 exact for quadratics). Relative error |W − ΔS − D| / max(|W|, D, |ΔS|,
+/// 1e-9·|S|). It measures the integration error: ≲ 1e-9 for rk8pd, O(tol^{2/3}) for
+/// generalized-α (its numerical damping included for ρ∞ < 1); a summary warning above 1e-4.
+///
+/// **Quasi-static run** (SimulateQuasiStatic): the static equilibrium at every θ sample with the
+/// loaded static TE and the tangent mesh stiffness (K, K·h, K·μ·b²) per mesh.
 ///
 /// **Results.** Every run returns what it computed so far even when it fails or is cancelled
 /// (Summary status + message; the library never prints). No verdict (steady) without a clean
@@ -103,8 +111,11 @@ struct TimeIntegrationOptions {
 };
 
 /// @brief Steady-state detection: the response is steady when, for `consecutive_periods`
-/// periods in a row, the change of the state at the period start (‖Δx‖/‖x‖ + ‖Δv‖/‖v‖, scaled)
-/// and of the DTE RMS of every mesh from one period to the next is below `tolerance`.
+/// periods in a row, the change from one period to the next of the state at the period start
+/// (max-norm, rigid-body motion projected out: ‖Δx‖/‖x‖ and ‖Δv‖/max(‖v‖, ω_m‖x‖)) and of the
+/// DTE RMS of every mesh (relative to max(RMS, 1e-6·|mean DTE|)) is below `tolerance`. A
+/// response whose max |DTE| grows beyond 1e4 × its first period's ends the run (kNotConverged,
+/// "grows without bound").
 struct SteadyStateOptions {
   double tolerance = 1e-6;      ///< relative period-to-period change [-], in [1e-14, 1]
   int consecutive_periods = 3;  ///< k, in [1, 1000]
@@ -226,8 +237,10 @@ struct TimeSweepOptions {
 };
 
 /// @brief Result of a stepped sweep: the points of the up branch (increasing f) then of the down
-/// branch (decreasing f); the run stops at the first failed point of a branch (kept, with its
-/// status) and goes on with the other branch.
+/// branch (decreasing f). A point that is not steady within max_periods is kept with its status
+/// (kNotConverged, verdict kUndetermined) and the branch goes on from its last state; a numerical
+/// failure ends its branch (the point kept, with its status) and the other branch starts afresh;
+/// cancellation ends the sweep. The summary has the worst status and one warning per such point.
 struct TimeSweep {
   std::vector<TimeSweepPoint> points;
   Summary summary;  ///< worst status of the points; counters: steps, events, points
