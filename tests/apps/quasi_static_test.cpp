@@ -7,7 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include "geardyn/analyses/time_response.hpp"
 #include "geardyn/common/errors.hpp"
+#include "geardyn/models/scene/scene_reader.hpp"
+#include "geardyn/models/system/scene_system.hpp"
 #include "geardyn/system/system_builder.hpp"
 
 namespace geardyn::app {
@@ -105,6 +108,29 @@ TEST(QuasiStaticTest, SampleCountOutOfRangeNamesTheOption) {
         }
       },
       InvalidInput);
+}
+
+// The engine's own slow roll (SimulateQuasiStatic, time_response.hpp: each static solve started
+// from the previous one, its own tangent code) on the slice rig gives the same K(θ) and loaded
+// STE: two implementations of the same definition.
+TEST(QuasiStaticTest, EqualsTheEnginesSlowRollOnTheSliceRig) {
+  const SystemModel model = MakeSystemModel(
+      LoadScene("builtin:kahraman-blankenship-rig", {"mesh.pinion-wheel.model=slices"}));
+  constexpr int kSamples = 16;
+  const QuasiStaticResult mine = ComputeQuasiStatic(model, {0.01}, kSamples);
+  QuasiStaticOptions options;
+  options.samples_per_mesh = kSamples;
+  const geardyn::QuasiStaticResult engine = SimulateQuasiStatic(model, options);
+  ASSERT_TRUE(mine.summary.ok()) << mine.summary.message;
+  ASSERT_TRUE(engine.summary.ok()) << engine.summary.message;
+  ASSERT_EQ(engine.meshes.size(), 1u);
+  ASSERT_EQ(engine.meshes[0].loaded_te.size(), kSamples);
+  for (int s = 0; s < kSamples; ++s) {
+    const double k = engine.meshes[0].stiffness(0, s);
+    const double te = engine.meshes[0].loaded_te(s);
+    EXPECT_NEAR(mine.meshes[0].parameters.stiffness[s], k, 1e-9 * k) << s;
+    EXPECT_NEAR(mine.meshes[0].loaded_ste[s], te, 1e-8 * std::abs(te)) << s;
+  }
 }
 
 }  // namespace
