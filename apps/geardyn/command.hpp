@@ -47,5 +47,6 @@ Command AddModesCommand(CLI::App& app);
 Command AddScenesCommand(CLI::App& app);
 Command AddFloquetCommand(CLI::App& app);
 Command AddStabilityChartCommand(CLI::App& app);
+Command AddSimulateCommand(CLI::App& app);
 
 }  // namespace geardyn::app

@@ -22,7 +22,7 @@ const std::vector<CommandFactory>& CommandFactories() {
   // One line per subcommand; keep the order of `geardyn --help`.
   static const std::vector<CommandFactory> factories = {
       &AddInfoCommand,    &AddScenesCommand,         &AddMeshCommand, &AddModesCommand,
-      &AddFloquetCommand, &AddStabilityChartCommand, &AddHbCommand,
+      &AddFloquetCommand, &AddStabilityChartCommand, &AddHbCommand,   &AddSimulateCommand,
   };
   return factories;
 }

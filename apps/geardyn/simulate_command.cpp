@@ -1,0 +1,545 @@
+// `geardyn simulate SCENE`: time integration of the scene's system (time_response.hpp) — the
+// model harmonic balance solves for LTV and slice meshes, and the tooth-contact model — at one
+// speed to steady state (default: the scene's operating point), at independent speeds in
+// parallel, or as stepped up/down sweeps that carry the state from point to point (both branches
+// of a jump); per mean torque (--torque). --quasi-static instead exports the loaded K(θ) and STE
+// as a [mesh.parameters] table (quasi_static.hpp, mesh_parameters_export.hpp).
+//
+// Files in --out (simulate_report.hpp): one run: simulate.json, simulate_dte.csv,
+// simulate_energy.csv, simulate_element_forces.csv and simulate_channels.csv (when the model
+// gives them); several: simulate.json, simulate_sweep.csv, simulate_rms_dte.svg (with
+// --overlay-hb the harmonic-balance curve of the same scene, one panel per torque). The files are
+// written whatever the outcome: a failed run (status ≠ success, exit 1) or one interrupted by
+// SIGINT (exit 130) keeps what was computed before.
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <memory>
+#include <numbers>
+#include <sstream>
+
+#include "geardyn/analyses/harmonic_balance.hpp"
+#include "geardyn/analyses/system_nonlinear_hb.hpp"
+#include "geardyn/analyses/time_response.hpp"
+#include "geardyn/cli.hpp"
+#include "geardyn/command.hpp"
+#include "geardyn/common/check.hpp"
+#include "geardyn/hb_report.hpp"
+#include "geardyn/mesh_parameters_export.hpp"
+#include "geardyn/models/scene/scene_reader.hpp"
+#include "geardyn/models/system/scene_system.hpp"
+#include "geardyn/output_files.hpp"
+#include "geardyn/quasi_static.hpp"
+#include "geardyn/simulate_report.hpp"
+
+namespace geardyn::app {
+namespace {
+
+// Minimum time between two --progress lines [s].
+constexpr double kProgressInterval = 0.5;
+// Harmonics of the --overlay-hb nonlinear HB curve (as `geardyn hb`'s nonlinear default).
+constexpr int kOverlayHarmonics = 24;
+// Points of the --overlay-hb linear HB curve over the sweep's range.
+constexpr int kOverlayLinearPoints = 200;
+
+struct SimulateOptions {
+  SceneCommandOptions scene;
+  std::string mesh_frequency;   // --mesh-frequency ("" = the operating point)
+  std::string sweep;            // --sweep up|down|both ("" = independent speeds)
+  std::vector<double> torques;  // --torque
+  std::string integrator = "auto";
+  double tolerance = TimeIntegrationOptions{}.relative_tolerance;
+  double steady_tolerance = SteadyStateOptions{}.tolerance;
+  int max_periods = SteadyStateOptions{}.max_periods;
+  int record_periods = SteadyStateOptions{}.record_periods;
+  int samples_per_period = TimeIntegrationOptions{}.samples_per_period;
+  double max_step = TimeIntegrationOptions{}.max_step_fraction;
+  int threads = 0;
+  bool quasi_static = false;
+  bool overlay_hb = false;
+  bool progress = false;
+};
+
+// SIGINT → cancel flag (lock-free atomic: safe in a signal handler).
+std::atomic<bool> g_cancel{false};
+extern "C" void OnInterrupt(int) { g_cancel.store(true); }
+
+// Installs OnInterrupt for the lifetime of the object and restores the previous handler.
+class InterruptScope {
+ public:
+  InterruptScope() {
+    g_cancel.store(false);
+    previous_ = std::signal(SIGINT, OnInterrupt);
+  }
+  ~InterruptScope() { std::signal(SIGINT, previous_ == SIG_ERR ? SIG_DFL : previous_); }
+  InterruptScope(const InterruptScope&) = delete;
+  InterruptScope& operator=(const InterruptScope&) = delete;
+
+ private:
+  void (*previous_)(int) = SIG_DFL;
+};
+
+// The SceneSystemOptions of the time-domain runs: analysis "simulate", and tooth-contact meshes
+// (model = "contact", time-domain only) allowed where the scene builder knows them (the field
+// arrives with the contact model; the requires-clause keeps this file building without it).
+template <typename Options>
+void AllowContactMeshes(Options& so) {
+  if constexpr (requires { so.allow_contact_meshes = true; }) so.allow_contact_meshes = true;
+}
+SceneSystemOptions TimeDomainSystemOptions() {
+  SceneSystemOptions so;
+  so.analysis = "simulate";
+  AllowContactMeshes(so);
+  return so;
+}
+
+void Validate(const SimulateOptions& o) {
+  TimeIntegrator integrator;
+  GEARDYN_THROW_UNLESS(
+      ParseTimeIntegrator(o.integrator, &integrator),
+      "--integrator: '" << o.integrator << "' is not one of auto, generalized_alpha, runge_kutta");
+  GEARDYN_THROW_UNLESS(std::isfinite(o.tolerance) && o.tolerance >= 1e-14 && o.tolerance <= 1e-2,
+                       "--tolerance: the local relative error per step must be in [1e-14, 1e-2], "
+                       "got "
+                           << o.tolerance);
+  GEARDYN_THROW_UNLESS(
+      std::isfinite(o.steady_tolerance) && o.steady_tolerance >= 1e-14 && o.steady_tolerance <= 1,
+      "--steady-tolerance: the period-to-period change must be in [1e-14, 1], got "
+          << o.steady_tolerance);
+  GEARDYN_THROW_UNLESS(o.max_periods >= 1 && o.max_periods <= 10000000,
+                       "--max-periods: must be in [1, 10000000], got " << o.max_periods);
+  GEARDYN_THROW_UNLESS(o.record_periods >= 1 && o.record_periods <= 1000,
+                       "--record-periods: must be in [1, 1000], got " << o.record_periods);
+  GEARDYN_THROW_UNLESS(o.samples_per_period >= 4 && o.samples_per_period <= 65536,
+                       "--samples-per-period: must be in [4, 65536], got " << o.samples_per_period);
+  GEARDYN_THROW_UNLESS(std::isfinite(o.max_step) && o.max_step > 0.0 && o.max_step <= 1.0,
+                       "--max-step: the largest time step as a fraction of the mesh period must "
+                       "be in (0, 1], got "
+                           << o.max_step);
+  GEARDYN_THROW_UNLESS(o.threads >= 0 && o.threads <= 1024,
+                       "--threads: must be in [0, 1024] (0: OpenMP's default), got " << o.threads);
+  for (const double t : o.torques) {
+    GEARDYN_THROW_UNLESS(std::isfinite(t), "--torque: " << t << " is not a finite torque [N·m]");
+  }
+  GEARDYN_THROW_UNLESS(o.torques.size() <= 100,
+                       "--torque: at most 100 torques, got " << o.torques.size());
+  GEARDYN_THROW_UNLESS(!(o.quasi_static && (!o.sweep.empty() || o.overlay_hb)),
+                       "--quasi-static: a static slow roll; --sweep and --overlay-hb do not apply");
+  GEARDYN_THROW_UNLESS(!(o.quasi_static && !o.mesh_frequency.empty()),
+                       "--quasi-static: a static slow roll has no mesh frequency; drop "
+                       "--mesh-frequency");
+}
+
+// The scene at mean torque T [N·m]: the operating-point torque set to T and every [[load]]
+// torque scaled by T/T₀ (T₀ the scene's), so that a balanced scene stays balanced.
+Scene AtTorque(const Scene& scene, double torque) {
+  Scene out = scene;
+  const double t0 = scene.operating_point.torque;
+  if (torque == t0) return out;
+  const bool has_loads =
+      std::any_of(scene.loads.begin(), scene.loads.end(), [](const auto& l) { return l.torque; });
+  GEARDYN_THROW_UNLESS(t0 != 0.0 || !has_loads,
+                       "--torque: the scene's operating_point.torque is 0, so its [[load]] "
+                       "torques cannot be scaled to "
+                           << torque << " N·m; set them with --set");
+  for (auto& load : out.loads) load.torque *= torque / t0;
+  out.operating_point.torque = torque;
+  return out;
+}
+
+TimeResponseOptions MakeResponseOptions(const SimulateOptions& o) {
+  TimeResponseOptions r;
+  ParseTimeIntegrator(o.integrator, &r.integration.integrator);
+  r.integration.relative_tolerance = o.tolerance;
+  r.integration.samples_per_period = o.samples_per_period;
+  r.integration.max_step_fraction = o.max_step;
+  r.steady.tolerance = o.steady_tolerance;
+  r.steady.max_periods = o.max_periods;
+  r.steady.min_periods = std::min(r.steady.min_periods, o.max_periods);
+  r.steady.record_periods = o.record_periods;
+  std::string why;
+  GEARDYN_THROW_UNLESS(r.IsValid(&why), why);
+  return r;
+}
+
+std::string TorqueSuffix(const std::vector<double>& torques, double torque) {
+  if (torques.size() <= 1) return "";
+  char text[48];
+  std::snprintf(text, sizeof(text), "_%gNm", torque);
+  return text;
+}
+
+// The model with every contact (NonlinearMeshCore) mesh replaced by the slice model of the same
+// pair, for the HB overlay; nullopt (and a warning) when the scene cannot be built that way.
+bool HasNonlinearCore(const SystemModel& model) {
+  for (const SystemMesh& m : model.meshes()) {
+    if (std::holds_alternative<std::shared_ptr<const NonlinearMeshCore>>(m.core)) return true;
+  }
+  return false;
+}
+
+// The HB curve of one torque over [lo, hi]: nonlinear HB (slice meshes) or linear HB.
+HbOverlay ComputeOverlay(const SimulateOptions& o, const Scene& scene_t, double torque,
+                         const std::vector<double>& frequencies, std::vector<std::string>* warnings,
+                         std::ostream& err) {
+  HbOverlay overlay;
+  overlay.torque_nm = torque;
+  SceneSystemOptions so;
+  so.analysis = "hb";
+  SystemModel model = BuildSceneSystem(scene_t, TimeDomainSystemOptions()).model;
+  if (HasNonlinearCore(model)) {
+    // The slice model of the same pair (what the issue's Kim figures compare with).
+    std::vector<std::string> overrides = o.scene.overrides;
+    for (const MeshDef& m : scene_t.meshes) overrides.push_back("mesh." + m.name + ".model=slices");
+    try {
+      model = BuildSceneSystem(AtTorque(LoadScene(o.scene.scene, overrides), torque), so).model;
+    } catch (const InvalidInput& e) {
+      warnings->push_back(std::string("--overlay-hb: the slice model of the scene cannot be "
+                                      "built, no overlay: ") +
+                          e.what());
+      return overlay;
+    }
+  }
+  const double lo = *std::min_element(frequencies.begin(), frequencies.end());
+  const double hi = *std::max_element(frequencies.begin(), frequencies.end());
+  if (o.progress) err << "geardyn simulate: --overlay-hb at " << torque << " N·m\n";
+  if (model.time_dependence() == TimeDependence::kNonlinear) {
+    overlay.label = "nonlinear HB";
+    SystemNhbOptions nhb;
+    nhb.hb.harmonics = kOverlayHarmonics;
+    nhb.start_hz = lo;
+    nhb.end_hz = hi;
+    nhb.continuation.max_omega_step = 2.0 * std::numbers::pi * (hi - lo) / kOverlayLinearPoints;
+    const SystemNhbCurve curve = TraceSystemNonlinearHb(model, nhb);
+    for (const SystemNhbPoint& p : curve.points) {
+      overlay.frequency.push_back(p.mesh_frequency_hz);
+      const bool ok = p.point.status == Status::kSuccess && !p.meshes.empty();
+      overlay.rms_dte.push_back(ok ? p.meshes.front().rms_dte : std::nan(""));
+    }
+    if (!curve.summary.ok()) {
+      warnings->push_back("--overlay-hb: nonlinear HB at " + std::to_string(torque) + " N·m: " +
+                          StatusName(curve.summary.status) + ": " + curve.summary.message);
+    }
+  } else {
+    overlay.label = "linear HB";
+    std::vector<double> grid(kOverlayLinearPoints);
+    for (int i = 0; i < kOverlayLinearPoints; ++i) {
+      grid[i] = lo + (hi - lo) * i / (kOverlayLinearPoints - 1);
+    }
+    const HbSweepResult sweep = SweepHarmonicBalance(model, grid, HbOptions{});
+    for (const HbResult& p : sweep.points) {
+      overlay.frequency.push_back(p.mesh_frequency_hz);
+      const bool ok = p.summary.ok() && !p.meshes.empty();
+      overlay.rms_dte.push_back(ok ? p.meshes.front().rms_dte : std::nan(""));
+    }
+  }
+  return overlay;
+}
+
+// Progress lines on `err`, at most one per kProgressInterval.
+TimeProgress MakeProgress(const SimulateOptions& o, std::ostream& err, double torque) {
+  if (!o.progress) return {};
+  auto last = std::make_shared<std::chrono::steady_clock::time_point>(
+      std::chrono::steady_clock::now() - std::chrono::hours(1));
+  return [&err, last, torque](double fraction, const std::string& note) {
+    const auto now = std::chrono::steady_clock::now();
+    if (fraction < 1.0 && std::chrono::duration<double>(now - *last).count() < kProgressInterval) {
+      return;
+    }
+    *last = now;
+    char line[64];
+    std::snprintf(line, sizeof(line), "geardyn simulate: %g N·m: %5.1f %% ", torque,
+                  100.0 * fraction);
+    err << line << note << "\n";
+  };
+}
+
+int RunQuasiStatic(const SimulateOptions& o, const Scene& scene, const std::vector<double>& torques,
+                   std::ostream& out) {
+  nlohmann::json report = {{"scene", scene.source}, {"mode", "quasi_static"}};
+  nlohmann::json runs = nlohmann::json::array();
+  std::string text;
+  std::vector<std::pair<std::string, std::string>> files;
+  bool ok = true;
+  for (const double torque : torques) {
+    const Scene scene_t = AtTorque(scene, torque);
+    const SceneSystem built = BuildSceneSystem(scene_t, TimeDomainSystemOptions());
+    std::vector<double> b;
+    for (const MeshDef& m : scene_t.meshes) b.push_back(m.geometry.face_width / 2.0);
+    const QuasiStaticResult qs = ComputeQuasiStatic(built.model, b, o.samples_per_period);
+    ok = ok && qs.summary.ok();
+    std::string toml, set, csv = "theta_rad";
+    nlohmann::json meshes = nlohmann::json::array();
+    for (const QuasiStaticMesh& m : qs.meshes) {
+      const MeshParameterSamples& p = m.parameters;
+      std::ostringstream head;
+      head << "geardyn simulate --quasi-static " << scene.source << " at " << torque << " N·m";
+      toml += FormatMeshParametersToml(p, {head.str()}) + "\n";
+      set += FormatMeshParametersOverride(p) + "\n";
+      const auto [kmin, kmax] = std::minmax_element(p.stiffness.begin(), p.stiffness.end());
+      const auto [smin, smax] = std::minmax_element(m.loaded_ste.begin(), m.loaded_ste.end());
+      double kmean = 0.0;
+      for (const double k : p.stiffness) kmean += k / static_cast<double>(p.stiffness.size());
+      meshes.push_back({{"name", p.mesh},
+                        {"mean_stiffness_n_per_m", kmean},
+                        {"min_stiffness_n_per_m", *kmin},
+                        {"max_stiffness_n_per_m", *kmax},
+                        {"peak_to_peak_loaded_ste_m", *smax - *smin},
+                        {"stiffness_n_per_m", p.stiffness},
+                        {"loaded_ste_m", m.loaded_ste},
+                        {"transmission_error_m", p.transmission_error},
+                        {"force_n", m.force}});
+      char line[200];
+      std::snprintf(line, sizeof(line),
+                    "%g N·m, mesh %s: K mean %.6g N/m (min %.6g, max %.6g), loaded STE p-p "
+                    "%.6g µm\n",
+                    torque, p.mesh.c_str(), kmean, *kmin, *kmax, 1e6 * (*smax - *smin));
+      text += line;
+      csv += "," + p.mesh + ":stiffness_n_per_m," + p.mesh + ":stiffness_h_n," + p.mesh +
+             ":stiffness_mu_b2_nm," + p.mesh + ":loaded_ste_m," + p.mesh + ":te_eta_m," + p.mesh +
+             ":force_n";
+    }
+    csv += "\n";
+    const int s_count = qs.meshes.empty() ? 0 : static_cast<int>(qs.meshes[0].loaded_ste.size());
+    for (int s = 0; s < s_count; ++s) {
+      char cell[40];
+      std::snprintf(cell, sizeof(cell), "%.17g", 2.0 * std::numbers::pi * s / s_count);
+      csv += cell;
+      for (const QuasiStaticMesh& m : qs.meshes) {
+        const MeshParameterSamples& p = m.parameters;
+        for (const double v : {p.stiffness[s], p.stiffness_h[s], p.stiffness_mu_b2[s],
+                               m.loaded_ste[s], p.transmission_error[s], m.force[s]}) {
+          std::snprintf(cell, sizeof(cell), ",%.17g", v);
+          csv += cell;
+        }
+      }
+      csv += "\n";
+    }
+    std::vector<std::string> warnings = built.warnings;
+    warnings.insert(warnings.end(), qs.summary.warnings.begin(), qs.summary.warnings.end());
+    runs.push_back({{"torque_nm", torque},
+                    {"status", StatusName(qs.summary.status)},
+                    {"message", qs.summary.message},
+                    {"samples", o.samples_per_period},
+                    {"wall_time_s", qs.summary.wall_time_s},
+                    {"warnings", warnings},
+                    {"meshes", meshes}});
+    if (!qs.summary.ok()) {
+      text += "status: " + std::string(StatusName(qs.summary.status)) + " (" + qs.summary.message +
+              ")\n";
+    }
+    for (const std::string& w : warnings) text += "warning: " + w + "\n";
+    const std::string suffix = TorqueSuffix(torques, torque);
+    files.push_back({"mesh_parameters" + suffix + ".toml", toml});
+    files.push_back({"mesh_parameters_set" + suffix + ".txt", set});
+    files.push_back({"quasi_static" + suffix + ".csv", csv});
+  }
+  report["runs"] = runs;
+  report["status"] = ok ? "success" : "not_converged";
+  const std::string json_text = report.dump(2) + "\n";
+  files.push_back({"quasi_static.json", json_text});
+  out << (o.scene.json ? json_text : text);
+  if (!o.scene.out_dir.empty()) {
+    for (const auto& [name, content] : files) WriteOutputFile(o.scene.out_dir, name, content);
+    if (!o.scene.json) out << "written to " << o.scene.out_dir << "\n";
+  }
+  return ok ? int{kExitOk} : int{kExitNumericalIssue};
+}
+
+int RunSimulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) {
+  Validate(o);
+  const auto start = std::chrono::steady_clock::now();
+  const Scene scene = LoadScene(o.scene.scene, o.scene.overrides);
+  const std::vector<double> torques =
+      o.torques.empty() ? std::vector<double>{scene.operating_point.torque} : o.torques;
+  if (o.quasi_static) return RunQuasiStatic(o, scene, torques, out);
+
+  std::vector<double> frequencies;
+  if (o.mesh_frequency.empty()) {
+    const double nominal = scene.meshes.empty() ? 0.0 : scene.MeshFrequencyHz(scene.meshes[0]);
+    GEARDYN_THROW_UNLESS(nominal > 0.0,
+                         "--mesh-frequency: required (the scene's operating speed is 0)");
+    frequencies = {nominal};
+  } else {
+    frequencies = ParseMeshFrequencies(o.mesh_frequency, 0.0);
+  }
+  SimulateMode mode = SimulateMode::kSingle;
+  if (frequencies.size() > 1)
+    mode = o.sweep.empty() ? SimulateMode::kIndependent : SimulateMode::kSweep;
+  GEARDYN_THROW_UNLESS(o.sweep.empty() || mode == SimulateMode::kSweep,
+                       "--sweep: needs a range of mesh frequencies, --mesh-frequency lo:hi:n with "
+                       "n >= 2");
+  GEARDYN_THROW_UNLESS(!o.overlay_hb || mode != SimulateMode::kSingle,
+                       "--overlay-hb: draws the HB curve over a range of mesh frequencies; give "
+                       "--mesh-frequency lo:hi:n with n >= 2");
+  const TimeResponseOptions response_options = MakeResponseOptions(o);
+
+  SimulateRunInfo info;
+  info.scene = scene.source;
+  info.mode = mode;
+  info.integrator = o.integrator;
+  info.tolerance = o.tolerance;
+  info.steady_tolerance = o.steady_tolerance;
+  info.max_periods = o.max_periods;
+  info.record_periods = o.record_periods;
+
+  std::vector<std::string> mesh_names;
+  std::vector<SimulatePoint> points;
+  std::vector<std::string> warnings;
+  std::vector<HbOverlay> overlays;
+  std::unique_ptr<TimeResponse> single;
+  std::unique_ptr<SystemModel> single_model;
+  std::vector<std::pair<double, Summary>> summaries;
+  const InterruptScope interrupt_scope;
+  for (const double torque : torques) {
+    if (g_cancel.load()) break;
+    const Scene scene_t = AtTorque(scene, torque);
+    const SceneSystem built = BuildSceneSystem(scene_t, TimeDomainSystemOptions());
+    for (const std::string& w : built.warnings) {
+      if (std::find(warnings.begin(), warnings.end(), "scene: " + w) == warnings.end()) {
+        warnings.push_back("scene: " + w);
+      }
+    }
+    mesh_names.clear();
+    for (const SystemMesh& m : built.model.meshes()) mesh_names.push_back(m.name);
+    const TimeProgress progress = MakeProgress(o, err, torque);
+    if (mode == SimulateMode::kSingle) {
+      TimeResponse r = SimulateSteadyState(built.model, frequencies.front(), response_options,
+                                           progress, &g_cancel);
+      SimulatePoint p{torque,  "single", ToSweepPoint(r), ToString(r.integrator_used),
+                      r.steps, r.events};
+      points.push_back(p);
+      for (const std::string& w : r.summary.warnings) warnings.push_back(w);
+      summaries.emplace_back(torque, r.summary);
+      if (torques.size() == 1) {
+        single = std::make_unique<TimeResponse>(std::move(r));
+        single_model = std::make_unique<SystemModel>(built.model);
+      }
+    } else if (mode == SimulateMode::kIndependent) {
+      const std::vector<TimeResponse> runs = SimulateSpeeds(
+          built.model, frequencies, response_options, o.threads, progress, &g_cancel);
+      for (const TimeResponse& r : runs) {
+        points.push_back({torque, "independent", ToSweepPoint(r), ToString(r.integrator_used),
+                          r.steps, r.events});
+        for (const std::string& w : r.summary.warnings) {
+          if (std::find(warnings.begin(), warnings.end(), w) == warnings.end()) {
+            warnings.push_back(w);
+          }
+        }
+      }
+    } else {
+      TimeSweepOptions sweep_options;
+      sweep_options.response = response_options;
+      sweep_options.up = o.sweep != "down";
+      sweep_options.down = o.sweep != "up";
+      const TimeSweep sweep =
+          SimulateSweep(built.model, frequencies, sweep_options, progress, &g_cancel);
+      for (const TimeSweepPoint& p : sweep.points) {
+        points.push_back({torque, ToString(p.branch), p, "", -1, -1});
+      }
+      for (const std::string& w : sweep.summary.warnings) warnings.push_back(w);
+      summaries.emplace_back(torque, sweep.summary);
+    }
+    if (o.overlay_hb && !g_cancel.load()) {
+      overlays.push_back(ComputeOverlay(o, scene_t, torque, frequencies, &warnings, err));
+    }
+  }
+  info.interrupted = g_cancel.load();
+  info.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const nlohmann::json report =
+      MakeSimulateReport(info, mesh_names, points, warnings, single.get(), summaries);
+  const std::string json_text = report.dump(2) + "\n";
+  out << (o.scene.json ? json_text : FormatSimulateText(report));
+  if (!o.scene.out_dir.empty()) {
+    const std::string& dir = o.scene.out_dir;
+    WriteOutputFile(dir, "simulate.json", json_text);
+    if (single != nullptr) {
+      WriteOutputFile(dir, "simulate_dte.csv",
+                      FormatDteHistoryCsv(*single, response_options.initial_phase));
+      WriteOutputFile(dir, "simulate_energy.csv", FormatEnergyCsv(*single));
+      const std::string elements = FormatElementForceCsv(*single_model, *single);
+      if (!elements.empty()) WriteOutputFile(dir, "simulate_element_forces.csv", elements);
+      const std::string channels =
+          FormatChannelHistoryCsv(*single, response_options.integration.channel_decimation);
+      if (!channels.empty()) WriteOutputFile(dir, "simulate_channels.csv", channels);
+    } else {
+      WriteOutputFile(dir, "simulate_sweep.csv", FormatSimulateSweepCsv(mesh_names, points));
+      WriteOutputFile(dir, "simulate_rms_dte.svg",
+                      RenderSimulatePlot("RMS DTE (time integration): " + scene.source, mesh_names,
+                                         points, overlays));
+    }
+    if (!o.scene.json) out << "written to " << dir << "\n";
+  }
+  if (info.interrupted) {
+    err << "geardyn simulate: interrupted (SIGINT); the results computed so far were "
+        << (o.scene.out_dir.empty() ? std::string("printed") : "written to " + o.scene.out_dir)
+        << "\n";
+    return kExitInterrupted;
+  }
+  return report["status"] == "success" ? int{kExitOk} : int{kExitNumericalIssue};
+}
+
+}  // namespace
+
+Command AddSimulateCommand(CLI::App& app) {
+  auto opts = std::make_shared<SimulateOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "simulate",
+      "time integration to steady state: DTE, contact and bearing forces, energy balance; "
+      "stepped up/down sweeps; quasi-static K(θ) export");
+  AddSceneOptions(cmd, &opts->scene);
+  cmd->add_option("--mesh-frequency", opts->mesh_frequency,
+                  "tooth-mesh frequency [Hz]: one value, or lo:hi:n for n evenly spaced ones "
+                  "(default: the scene's operating point, one run)");
+  cmd->add_option("--sweep", opts->sweep,
+                  "with lo:hi:n: a stepped sweep carrying the state from point to point (up = "
+                  "increasing, down = decreasing, both); default: independent runs from the "
+                  "static equilibrium, in parallel")
+      ->check(CLI::IsMember({"up", "down", "both"}));
+  cmd->add_option("--torque", opts->torques,
+                  "mean torques T [N·m] of the operating point, comma-separated (default: the "
+                  "scene's); each [[load]] torque is scaled by T over the scene's torque")
+      ->delimiter(',');
+  cmd->add_option("--integrator", opts->integrator,
+                  "auto (default: explicit runge_kutta unless the system is stiff, then "
+                  "generalized_alpha), generalized_alpha (implicit, Newton), runge_kutta (GSL "
+                  "rk8pd)");
+  cmd->add_option("--tolerance", opts->tolerance,
+                  "local relative error per time step [-], in [1e-14, 1e-2] (default 1e-8)");
+  cmd->add_option("--steady-tolerance", opts->steady_tolerance,
+                  "steady state: relative period-to-period change of the state and of the RMS "
+                  "DTE, 3 periods in a row [-], in [1e-14, 1] (default 1e-6)");
+  cmd->add_option("--max-periods", opts->max_periods,
+                  "periods integrated at most before steady state, in [1, 10000000] (default "
+                  "3000; reached: status not_converged, exit 1, files kept)");
+  cmd->add_option("--record-periods", opts->record_periods,
+                  "periods recorded after steady state, in [1, 1000] (default 1)");
+  cmd->add_option("--samples-per-period", opts->samples_per_period,
+                  "output samples per mesh period, in [4, 65536] (default 64); --quasi-static: "
+                  "the mesh phases of the table, at most 4096");
+  cmd->add_option("--max-step", opts->max_step,
+                  "largest time step as a fraction of the mesh period [-], in (0, 1] (default "
+                  "0.05)");
+  cmd->add_option("--threads", opts->threads,
+                  "threads of independent speeds (OpenMP), 0 = all cores (default)");
+  cmd->add_flag("--quasi-static", opts->quasi_static,
+                "slow roll under load: the loaded STE and K(θ) of every mesh, written as "
+                "[mesh.parameters] tables (mesh_parameters.toml) for an LTV mesh");
+  cmd->add_flag("--overlay-hb", opts->overlay_hb,
+                "with a range: draw the harmonic-balance curve of the same scene in the SVG "
+                "(nonlinear HB for slice meshes and, via model = \"slices\", for contact "
+                "meshes; linear HB otherwise)");
+  cmd->add_flag("--progress", opts->progress, "print the progress on the error stream");
+  Command command{cmd, nullptr};
+  command.run_with_err = [opts](std::ostream& out, std::ostream& err) {
+    return RunSimulate(*opts, out, err);
+  };
+  return command;
+}
+
+}  // namespace geardyn::app
