@@ -2,7 +2,7 @@
 // Kahraman–Blankenship rig (two 50-tooth spur gears, Kim's law, μ = 0.06) at a loaded state
 // (1 µm along the line of action, two-pair zone), as a time integrator calls it per stage / Newton
 // iteration. Arguments: teeth type (0 rigid, 1 revolute = Kim's type A, 2 bushing = type B),
-// face slices, Jacobians (0/1).
+// face slices, Jacobians (0/1), biarcs per flank (0: the exact involute; N: profile = "biarc").
 //
 // Run: build with -DCMAKE_BUILD_TYPE=Release -DGEARDYN_BUILD_BENCHMARKS=ON, then
 //   ./tests/benchmarks/contact_core_benchmark
@@ -36,6 +36,10 @@ void BM_ContactCoreCalcForces(benchmark::State& state) {
   def.bending_damping = 2e-4;
   def.friction_coefficient = 0.06;
   def.face_slices = static_cast<int>(state.range(1));
+  if (state.range(3) > 0) {
+    def.profile = ContactProfile::kBiarc;
+    def.arcs = static_cast<int>(state.range(3));
+  }
   const ContactMeshCore core(pair, frame, def);
   auto ws = core.MakeWorkspace();
   NonlinearMeshCoreOutput out = core.MakeOutput();
@@ -53,7 +57,8 @@ void BM_ContactCoreCalcForces(benchmark::State& state) {
   state.counters["contacts"] = out.num_contacts;
 }
 BENCHMARK(BM_ContactCoreCalcForces)
-    ->ArgsProduct({{0, 1, 2}, {1, 5}, {0, 1}})
+    ->ArgsProduct({{0, 1, 2}, {1, 5}, {0, 1}, {0}})
+    ->ArgsProduct({{0, 1}, {1}, {1}, {4, 32}})
     ->Unit(benchmark::kMicrosecond);
 
 }  // namespace

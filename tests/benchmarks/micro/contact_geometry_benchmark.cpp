@@ -2,6 +2,8 @@
 //  * InvoluteContact — one flank–flank evaluation (closed form, with derivatives);
 //  * TipCornerContact — one tip-corner–flank evaluation (closed form);
 //  * BiarcContact/N — the same contact with Kim's biarc flanks (N biarcs per flank, all arcs);
+//  * BiarcContactNear/N — the same with the O(1) lookup from the exact kernel's rolls, the
+//    exact kernel included (as the contact core calls it);
 //  * Presearch — the candidate tooth pairs of the rig (50/50 teeth) at one phase;
 //  * EvalToothPair — one pair in one slice through the mesh kinematics (poses, kernel, chain rule
 //    to the 12 body coordinates, θ and the tooth DOFs), spur (rig) and helical (21/37, β 20°)
@@ -75,6 +77,19 @@ void BM_BiarcContact(benchmark::State& state) {
   state.counters["max_dev_m"] = a.max_deviation();
 }
 BENCHMARK(BM_BiarcContact)->Arg(4)->Arg(8)->Arg(16);
+
+void BM_BiarcContactNear(benchmark::State& state) {
+  const auto s = test::MakeContactPair(test::KimRigPair());
+  FlankPair f = RigFlanks(s);
+  const int n = static_cast<int>(state.range(0));
+  const BiarcFlank a(s.pinion, -1, n), b(s.gear, -1, n);
+  for (auto _ : state) {
+    f.a.base_angle += 1e-12;
+    const FlankContact t = CalcInvoluteContact(f.a, f.b);
+    benchmark::DoNotOptimize(CalcBiarcContactNear(a, f.a, t.roll1, b, f.b, t.roll2));
+  }
+}
+BENCHMARK(BM_BiarcContactNear)->Arg(4)->Arg(8)->Arg(16)->Arg(32);
 
 void BM_Presearch(benchmark::State& state) {
   const auto s = test::MakeContactPair(test::KimRigPair());
