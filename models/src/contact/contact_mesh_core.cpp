@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <span>
 #include <utility>
@@ -335,6 +336,15 @@ void ContactMeshCore::DoCalcForces(NonlinearMeshCoreWorkspace& ws_base, double t
   out->channels.setZero();
   std::fill(ws.drive_force.begin(), ws.drive_force.end(), 0.0);
   std::fill(ws.coast_force.begin(), ws.coast_force.end(), 0.0);
+  // A non-finite state has no contact answer: the kernels would report "no contact" for it, so the
+  // NaN is passed on (force, energy, switching) for the caller's checks to see, never a silent 0.
+  if (!std::isfinite(theta) || !std::isfinite(theta_rate) || !x.allFinite() || !v.allFinite()) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    out->force.setConstant(nan);
+    out->energy = out->dissipation_power = out->phase_power = nan;
+    out->switching.setConstant(nan);
+    return;
+  }
 
   // ---- tooth joints: ½ k q² and c q̇ on every tooth coordinate; their deflection channels
   double margin = kPresearchMargin;

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <utility>
 #include <vector>
@@ -358,6 +359,30 @@ TEST(ContactMeshCoreTest, BiarcStaticTransmissionErrorWithinTheDeviation) {
           << "N " << n << " theta " << theta;
     }
   }
+}
+
+// A non-finite coordinate has no contact answer. The kernels alone would call it "no contact"
+// (a zero force, indistinguishable from an open mesh); the core passes the NaN on instead, so the
+// caller's finiteness checks see it. Truth: the loaded state has contacts and a non-zero force.
+TEST(ContactMeshCoreTest, NonFiniteStateGivesNaNNotAnOpenMesh) {
+  const auto setup = MakeContactPair(KimRigPair());
+  const ContactMeshCore core(setup.pair, setup.frame, RevoluteDef());
+  auto ws = core.MakeWorkspace();
+  State s = LoadedState(core, 3, 3e-6);
+  const NonlinearMeshCoreOutput loaded = Eval(core, *ws, s, false);
+  ASSERT_GT(loaded.num_contacts, 0);
+  ASSERT_GT(loaded.force.norm(), 0.0);
+  for (const int i : {5, 20}) {  // a body rotation, a tooth coordinate
+    State bad = s;
+    bad.x(i) = std::numeric_limits<double>::quiet_NaN();
+    const NonlinearMeshCoreOutput out = Eval(core, *ws, bad, true);
+    EXPECT_TRUE(out.force.array().isNaN().all()) << i;
+    EXPECT_TRUE(std::isnan(out.energy)) << i;
+    EXPECT_TRUE(out.switching.array().isNaN().all()) << i;
+  }
+  State bad_v = s;
+  bad_v.v(0) = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(Eval(core, *ws, bad_v, false).force.array().isNaN().all());
 }
 
 TEST(ContactMeshCoreTest, UnsupportedOptionsAreRefused) {
