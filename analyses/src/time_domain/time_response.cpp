@@ -29,6 +29,19 @@ using internal::TdWorkspace;
 /// Growth of a mesh's max |DTE| over its first period beyond which a run is unbounded [-].
 constexpr double kGrowthLimit = 1e4;
 
+/// True when no period dissipated energy: D ≤ 1e-12 × the period's largest energy term (|W|,
+/// |ΔS|) in every period, and some period moved energy at all. Such a model (no damping
+/// anywhere) never settles: its free vibration from the starting state persists.
+bool Undamped(const std::vector<EnergyBalancePeriod>& energy) {
+  bool moved = false;
+  for (const EnergyBalancePeriod& e : energy) {
+    const double scale = std::max(std::abs(e.input_work), std::abs(e.stored_change));
+    if (!(e.dissipated <= 1e-12 * scale)) return false;
+    moved = moved || scale > 0.0;
+  }
+  return moved;
+}
+
 /// Worse of two statuses (kSuccess < kToleranceNotMet < kNotConverged < kNumericalIssue).
 Status Worse(Status a, Status b) {
   auto rank = [](Status s) {
@@ -343,6 +356,15 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
     summary.status = Status::kNotConverged;
     summary.message = "not steady after max_periods = " + std::to_string(so.max_periods) +
                       " periods (tolerance " + std::to_string(so.tolerance) + ")";
+    // An undamped model keeps its starting transient forever: say so instead of leaving the
+    // user to raise max_periods (the energy balance gives D per period for free).
+    if (Undamped(out.energy)) {
+      summary.message +=
+          ": the model dissipates no energy (D = 0 in every period: no damping in the meshes, "
+          "bearings, shafts or teeth), so the free vibration started from the static "
+          "equilibrium never decays and no steady state exists; add damping (e.g. the mesh's "
+          "damping_ratio)";
+    }
   }
 
   // Recording (also after a non-steady end, so that the last periods can be inspected; never
