@@ -362,8 +362,8 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
       summary.message +=
           ": the model dissipates no energy (D = 0 in every period: no damping in the meshes, "
           "bearings, shafts or teeth), so the free vibration started from the static "
-          "equilibrium never decays and no steady state exists; add damping (e.g. the mesh's "
-          "damping_ratio)";
+          "equilibrium never decays and no steady state exists; add damping (a mesh's "
+          "damping_ratio, the [mesh.contact] damping of a tooth-contact mesh, bearing damping)";
     }
   }
 
