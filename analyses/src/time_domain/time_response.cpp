@@ -10,9 +10,12 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <iomanip>
 #include <limits>
 #include <numbers>
+#include <sstream>
 
+#include "../floquet/floquet_internal.hpp"
 #include "geardyn/common/check.hpp"
 #include "geardyn/common/errors.hpp"
 #include "geardyn/system/probes.hpp"
@@ -40,6 +43,35 @@ bool Undamped(const std::vector<EnergyBalancePeriod>& energy) {
     moved = moved || scale > 0.0;
   }
   return moved;
+}
+
+/// ": undamped modes …" naming the modes of the mean system without damping (ζ < 1e-9, as
+/// Floquet's marginal verdict lists them), or "" when there are none or the modal analysis does
+/// not apply (a tooth-contact core, whose stiffness and damping the mean system lacks): a transient
+/// in such a mode never decays, which is why a run does not settle although the model dissipates
+/// energy elsewhere.
+std::string UndampedModesNote(const SystemModel& model) {
+  // The modal model of a tooth-contact core lacks its stiffness and damping: no diagnosis.
+  for (const SystemMesh& m : model.meshes()) {
+    if (std::holds_alternative<std::shared_ptr<const NonlinearMeshCore>>(m.core)) return "";
+  }
+  std::vector<UndampedMode> modes;
+  try {
+    modes = internal::UndampedModes(model);
+  } catch (const std::exception&) {
+    return "";  // a diagnostic only
+  }
+  if (modes.empty()) return "";
+  std::ostringstream note;
+  note << ": the mean system has undamped modes (";
+  constexpr std::size_t kListed = 4;
+  for (std::size_t i = 0; i < std::min(modes.size(), kListed); ++i) {
+    note << (i > 0 ? ", " : "") << std::setprecision(6) << modes[i].frequency_hz << " Hz ("
+         << modes[i].dominant_dof << ")";
+  }
+  if (modes.size() > kListed) note << ", … " << modes.size() - kListed << " more";
+  note << "): a transient in them never decays; add damping there (e.g. bearing damping)";
+  return note.str();
 }
 
 /// Worse of two statuses (kSuccess < kToleranceNotMet < kNotConverged < kNumericalIssue).
@@ -364,6 +396,8 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
           "bearings, shafts or teeth), so the free vibration started from the static "
           "equilibrium never decays and no steady state exists; add damping (a mesh's "
           "damping_ratio, the [mesh.contact] damping of a tooth-contact mesh, bearing damping)";
+    } else {
+      summary.message += UndampedModesNote(model);
     }
   }
 
