@@ -115,9 +115,12 @@ void Validate(const SimulateOptions& o) {
                        "--record-periods: must be in [1, 1000], got " << o.record_periods);
   GEARDYN_THROW_UNLESS(o.samples_per_period >= 4 && o.samples_per_period <= 65536,
                        "--samples-per-period: must be in [4, 65536], got " << o.samples_per_period);
-  GEARDYN_THROW_UNLESS(std::isfinite(o.max_step) && o.max_step > 0.0 && o.max_step <= 1.0,
+  // Below 1e-6 a period needs more than 1e6 steps: the run exhausts max_steps (1e8) after
+  // minutes of silence instead of giving a result (1e-9 tried: a 10-minute hang, then a failure).
+  GEARDYN_THROW_UNLESS(std::isfinite(o.max_step) && o.max_step >= 1e-6 && o.max_step <= 1.0,
                        "--max-step: the largest time step as a fraction of the mesh period must "
-                       "be in (0, 1], got "
+                       "be in [1e-6, 1] (at most 1e6 steps per period; tighten --tolerance for "
+                       "accuracy instead), got "
                            << o.max_step);
   GEARDYN_THROW_UNLESS(o.threads >= 0 && o.threads <= 1024,
                        "--threads: must be in [0, 1024] (0: OpenMP's default), got " << o.threads);
@@ -531,7 +534,7 @@ Command AddSimulateCommand(CLI::App& app) {
                   "output samples per mesh period, in [4, 65536] (default 64); --quasi-static: "
                   "the mesh phases of the table, at most 4096");
   cmd->add_option("--max-step", opts->max_step,
-                  "largest time step as a fraction of the mesh period [-], in (0, 1] (default "
+                  "largest time step as a fraction of the mesh period [-], in [1e-6, 1] (default "
                   "0.05)");
   cmd->add_option("--threads", opts->threads,
                   "threads of independent speeds (OpenMP), 0 = all cores (default)");

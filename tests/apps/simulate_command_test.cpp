@@ -87,6 +87,9 @@ TEST(SimulateCommandTest, BadOptionsExitTwoNamingTheOptionAndBound) {
       {{"--samples-per-period", "2"}, "--samples-per-period: must be in [4, 65536], got 2"},
       {{"--max-step", "0"}, "--max-step"},
       {{"--max-step", "1.5"}, "--max-step"},
+      {{"--max-step", "1e-9"},
+       "--max-step: the largest time step as a fraction of the mesh "
+       "period must be in [1e-6, 1]"},
       {{"--threads", "-1"}, "--threads"},
       {{"--integrator", "euler"}, "--integrator: 'euler' is not one of auto"},
       {{"--sweep", "up"}, "--sweep: needs a range"},

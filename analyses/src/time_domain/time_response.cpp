@@ -70,7 +70,8 @@ std::string UndampedModesNote(const SystemModel& model) {
          << modes[i].dominant_dof << ")";
   }
   if (modes.size() > kListed) note << ", … " << modes.size() - kListed << " more";
-  note << "): a transient in them never decays; add damping there (e.g. bearing damping)";
+  note << "): if the run excites them, their transient never decays; add damping there (e.g. "
+          "bearing damping)";
   return note.str();
 }
 
