@@ -7,6 +7,9 @@
 #include <sstream>
 
 #include "geardyn/common/units.hpp"
+#include "geardyn/models/contact/contact_law.hpp"
+#include "geardyn/models/contact/contact_mesh_def.hpp"
+#include "geardyn/models/contact/tooth_body.hpp"
 #include "geardyn/models/gear/iso_stiffness.hpp"
 #include "geardyn/models/scene/mesh_model.hpp"
 #include "geardyn/shaft_report.hpp"
@@ -105,10 +108,23 @@ json MeshReport(const Scene& scene, const MeshDef& mesh) {
   // The model's own notes (drive-sign fallbacks, keys without effect on the built core), as the
   // analyses print them; the mean operator suffices (ε, the costly part with tooth errors, only
   // adds its own size checks, which the analyses that need it report).
-  for (const std::string& w : BuildMeshCore(scene, mesh, /*transmission_error=*/false).warnings) {
-    // Already "mesh.NAME: …"; the ISO notes among them are listed above.
-    if (std::find(warnings.begin(), warnings.end(), json(w)) == warnings.end()) {
-      warnings.push_back(w);
+  // A tooth-contact mesh has no contact-line core (BuildMeshCore refuses it: time domain only);
+  // info shows its [mesh.contact] settings and the tooth DOF it adds instead.
+  if (mesh.model.level == MeshModelLevel::kContact) {
+    const ContactMeshDef def = mesh.model.contact.value_or(ContactMeshDef{});
+    const int per_tooth = ToothDofs(def.teeth);
+    r["contact"] = {{"teeth", ToString(def.teeth)},
+                    {"tooth_dofs", per_tooth * (g.pinion.teeth + g.gear.teeth)},
+                    {"law", ToString(def.law.kind)},
+                    {"friction_coefficient", def.friction_coefficient},
+                    {"profile", ToString(def.profile)},
+                    {"face_slices", def.face_slices}};
+  } else {
+    for (const std::string& w : BuildMeshCore(scene, mesh, /*transmission_error=*/false).warnings) {
+      // Already "mesh.NAME: …"; the ISO notes among them are listed above.
+      if (std::find(warnings.begin(), warnings.end(), json(w)) == warnings.end()) {
+        warnings.push_back(w);
+      }
     }
   }
   r["warnings"] = warnings;
@@ -221,6 +237,14 @@ std::string FormatInfoText(const nlohmann::json& report) {
     Line(out, "mesh frequency", mesh["mesh_frequency_hz"].get<double>(), "Hz");
     out << "  " << std::left << std::setw(34) << "hunting period" << std::right << std::setw(14)
         << mesh["hunting_period_meshes"].get<long>() << " mesh cycles\n";
+    if (mesh.contains("contact")) {
+      const json& c = mesh["contact"];
+      out << "  model contact (time-domain only: geardyn simulate): teeth "
+          << c["teeth"].get<std::string>() << " (" << c["tooth_dofs"].get<int>()
+          << " tooth DOF), law " << c["law"].get<std::string>() << ", friction "
+          << c["friction_coefficient"].get<double>() << ", " << c["profile"].get<std::string>()
+          << " flanks, " << c["face_slices"].get<int>() << " face slice(s)\n";
+    }
     for (const json& w : mesh["warnings"]) out << "warning: " << w.get<std::string>() << "\n";
   }
   FormatShaftsText(report, out);

@@ -115,9 +115,12 @@ void Validate(const SimulateOptions& o) {
                        "--record-periods: must be in [1, 1000], got " << o.record_periods);
   GEARDYN_THROW_UNLESS(o.samples_per_period >= 4 && o.samples_per_period <= 65536,
                        "--samples-per-period: must be in [4, 65536], got " << o.samples_per_period);
-  GEARDYN_THROW_UNLESS(std::isfinite(o.max_step) && o.max_step > 0.0 && o.max_step <= 1.0,
+  // Below 1e-6 a period needs more than 1e6 steps: the run exhausts max_steps (1e8) after
+  // minutes of silence instead of giving a result (1e-9 tried: a 10-minute hang, then a failure).
+  GEARDYN_THROW_UNLESS(std::isfinite(o.max_step) && o.max_step >= 1e-6 && o.max_step <= 1.0,
                        "--max-step: the largest time step as a fraction of the mesh period must "
-                       "be in (0, 1], got "
+                       "be in [1e-6, 1] (at most 1e6 steps per period; tighten --tolerance for "
+                       "accuracy instead), got "
                            << o.max_step);
   GEARDYN_THROW_UNLESS(o.threads >= 0 && o.threads <= 1024,
                        "--threads: must be in [0, 1024] (0: OpenMP's default), got " << o.threads);
@@ -239,14 +242,22 @@ HbOverlay ComputeOverlay(const SimulateOptions& o, const Scene& scene_t, double 
   return overlay;
 }
 
-// Progress lines on `err`, at most one per kProgressInterval.
-TimeProgress MakeProgress(const SimulateOptions& o, std::ostream& err, double torque) {
-  if (!o.progress) return {};
+// Without --progress, a run still reports on `err` once it has been quiet this long, and then
+// at this interval [s]: a run of minutes (a 100-DOF scene at 3000 periods) must not look hung.
+constexpr double kQuietProgressInterval = 10.0;
+
+// Progress lines on `err`: with --progress at most one per kProgressInterval; without, at most
+// one per kQuietProgressInterval, the first kQuietProgressInterval after the command started.
+TimeProgress MakeProgress(const SimulateOptions& o, std::ostream& err, double torque,
+                          std::chrono::steady_clock::time_point start) {
+  const double interval = o.progress ? kProgressInterval : kQuietProgressInterval;
   auto last = std::make_shared<std::chrono::steady_clock::time_point>(
-      std::chrono::steady_clock::now() - std::chrono::hours(1));
-  return [&err, last, torque](double fraction, const std::string& note) {
+      o.progress ? start - std::chrono::hours(1) : start);
+  const bool verbose = o.progress;
+  return [&err, last, torque, interval, verbose](double fraction, const std::string& note) {
     const auto now = std::chrono::steady_clock::now();
-    if (fraction < 1.0 && std::chrono::duration<double>(now - *last).count() < kProgressInterval) {
+    if ((fraction < 1.0 || !verbose) &&
+        std::chrono::duration<double>(now - *last).count() < interval) {
       return;
     }
     *last = now;
@@ -405,7 +416,7 @@ int RunSimulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) 
     }
     mesh_names.clear();
     for (const SystemMesh& m : built.model.meshes()) mesh_names.push_back(m.name);
-    const TimeProgress progress = MakeProgress(o, err, torque);
+    const TimeProgress progress = MakeProgress(o, err, torque, start);
     if (mode == SimulateMode::kSingle) {
       TimeResponse r = SimulateSteadyState(built.model, frequencies.front(), response_options,
                                            progress, &g_cancel);
@@ -523,7 +534,7 @@ Command AddSimulateCommand(CLI::App& app) {
                   "output samples per mesh period, in [4, 65536] (default 64); --quasi-static: "
                   "the mesh phases of the table, at most 4096");
   cmd->add_option("--max-step", opts->max_step,
-                  "largest time step as a fraction of the mesh period [-], in (0, 1] (default "
+                  "largest time step as a fraction of the mesh period [-], in [1e-6, 1] (default "
                   "0.05)");
   cmd->add_option("--threads", opts->threads,
                   "threads of independent speeds (OpenMP), 0 = all cores (default)");
@@ -534,7 +545,10 @@ Command AddSimulateCommand(CLI::App& app) {
                 "with a range: draw the harmonic-balance curve of the same scene in the SVG "
                 "(nonlinear HB for slice meshes and, via model = \"slices\", for contact "
                 "meshes; linear HB otherwise)");
-  cmd->add_flag("--progress", opts->progress, "print the progress on the error stream");
+  cmd->add_flag(
+      "--progress", opts->progress,
+      "print the progress on the error stream every 0.5 s (without it: every 10 s once a run "
+      "has taken 10 s)");
   Command command{cmd, nullptr};
   command.run_with_err = [opts](std::ostream& out, std::ostream& err) {
     return RunSimulate(*opts, out, err);

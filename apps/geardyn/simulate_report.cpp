@@ -20,6 +20,10 @@ std::string Num(double v) {
   return buffer;
 }
 
+// CSV cell: the number, or empty for NaN / ∞ (no value: a failed point; "nan" is not a number to
+// a spreadsheet, and an empty cell is what the JSON's null is).
+std::string Cell(double v) { return std::isfinite(v) ? Num(v) : std::string(); }
+
 // JSON number or null (NaN and ∞ are not JSON).
 json JsonNumber(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
@@ -224,10 +228,10 @@ std::string FormatSimulateSweepCsv(const std::vector<std::string>& mesh_names,
     const TimeSweepPoint& p = sp.point;
     out << Num(sp.torque_nm) << "," << sp.branch << "," << Num(p.mesh_frequency_hz) << ","
         << StatusName(p.status) << "," << ToString(p.steady) << "," << p.periods << ","
-        << Num(p.max_energy_error);
+        << Cell(p.max_energy_error);
     for (std::size_t k = 0; k < mesh_names.size(); ++k) {
-      out << "," << Num(At(p.rms_dte, k)) << "," << Num(At(p.peak_to_peak_dte, k)) << ","
-          << Num(At(p.mean_dte, k)) << "," << Num(At(p.contact_loss_fraction, k));
+      out << "," << Cell(At(p.rms_dte, k)) << "," << Cell(At(p.peak_to_peak_dte, k)) << ","
+          << Cell(At(p.mean_dte, k)) << "," << Cell(At(p.contact_loss_fraction, k));
     }
     out << "\n";
   }

@@ -159,6 +159,29 @@ TEST(CliTest, SetOverridesAValueWithoutEditingTheFile) {
               base["meshes"][0]["base_radius_pinion"].get<double>(), 0.0);
 }
 
+// `info` on a tooth-contact mesh (time-domain only) shows the geometry and the tooth DOF instead
+// of refusing. Truth: Kim et al. 2015's counts — two 50-tooth gears, 1 DOF per type-A tooth
+// (100), 3 per type-B tooth (300) — and the geometry unchanged by the mesh level.
+TEST(CliTest, InfoShowsAToothContactMesh) {
+  const std::string rig = "builtin:kahraman-blankenship-rig";
+  const nlohmann::json base = RunJson({"info", rig});
+  for (const auto& [teeth, dofs] : {std::pair{"revolute", 100}, std::pair{"bushing", 300}}) {
+    const std::vector<std::string> args = {
+        "info",  rig,
+        "--set", "mesh.pinion-wheel.model=contact",
+        "--set", std::string("mesh.pinion-wheel.contact.teeth=") + teeth,
+        "--set", "mesh.pinion-wheel.contact.bending_stiffness=11.5e3"};
+    const nlohmann::json m = RunJson(args)["meshes"][0];
+    EXPECT_EQ(m["contact"]["teeth"], teeth);
+    EXPECT_EQ(m["contact"]["tooth_dofs"].get<int>(), dofs);
+    EXPECT_EQ(m["contact"]["law"], "kim");
+    EXPECT_EQ(m["transverse_contact_ratio"], base["meshes"][0]["transverse_contact_ratio"]);
+    const CliRun text = RunGeardyn(args);
+    ASSERT_EQ(text.code, kExitOk) << text.err;
+    EXPECT_NE(text.out.find("model contact (time-domain only"), std::string::npos) << text.out;
+  }
+}
+
 // `info` prints the mesh model's own notes as the analyses do. Truth: mesh_model_test proves that
 // table_samples has no effect on a mesh without transmission error (the core is the same at every
 // θ with and without the key), which is what the warning says.

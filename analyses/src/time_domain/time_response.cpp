@@ -10,9 +10,12 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <iomanip>
 #include <limits>
 #include <numbers>
+#include <sstream>
 
+#include "../floquet/floquet_internal.hpp"
 #include "geardyn/common/check.hpp"
 #include "geardyn/common/errors.hpp"
 #include "geardyn/system/probes.hpp"
@@ -28,6 +31,49 @@ using internal::TdWorkspace;
 
 /// Growth of a mesh's max |DTE| over its first period beyond which a run is unbounded [-].
 constexpr double kGrowthLimit = 1e4;
+
+/// True when no period dissipated energy: D ≤ 1e-12 × the period's largest energy term (|W|,
+/// |ΔS|) in every period, and some period moved energy at all. Such a model (no damping
+/// anywhere) never settles: its free vibration from the starting state persists.
+bool Undamped(const std::vector<EnergyBalancePeriod>& energy) {
+  bool moved = false;
+  for (const EnergyBalancePeriod& e : energy) {
+    const double scale = std::max(std::abs(e.input_work), std::abs(e.stored_change));
+    if (!(e.dissipated <= 1e-12 * scale)) return false;
+    moved = moved || scale > 0.0;
+  }
+  return moved;
+}
+
+/// ": undamped modes …" naming the modes of the mean system without damping (ζ < 1e-9, as
+/// Floquet's marginal verdict lists them), or "" when there are none or the modal analysis does
+/// not apply (a tooth-contact core, whose stiffness and damping the mean system lacks): a transient
+/// in such a mode never decays, which is why a run does not settle although the model dissipates
+/// energy elsewhere.
+std::string UndampedModesNote(const SystemModel& model) {
+  // The modal model of a tooth-contact core lacks its stiffness and damping: no diagnosis.
+  for (const SystemMesh& m : model.meshes()) {
+    if (std::holds_alternative<std::shared_ptr<const NonlinearMeshCore>>(m.core)) return "";
+  }
+  std::vector<UndampedMode> modes;
+  try {
+    modes = internal::UndampedModes(model);
+  } catch (const std::exception&) {
+    return "";  // a diagnostic only
+  }
+  if (modes.empty()) return "";
+  std::ostringstream note;
+  note << ": the mean system has undamped modes (";
+  constexpr std::size_t kListed = 4;
+  for (std::size_t i = 0; i < std::min(modes.size(), kListed); ++i) {
+    note << (i > 0 ? ", " : "") << std::setprecision(6) << modes[i].frequency_hz << " Hz ("
+         << modes[i].dominant_dof << ")";
+  }
+  if (modes.size() > kListed) note << ", … " << modes.size() - kListed << " more";
+  note << "): if the run excites them, their transient never decays; add damping there (e.g. "
+          "bearing damping)";
+  return note.str();
+}
 
 /// Worse of two statuses (kSuccess < kToleranceNotMet < kNotConverged < kNumericalIssue).
 Status Worse(Status a, Status b) {
@@ -343,6 +389,17 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
     summary.status = Status::kNotConverged;
     summary.message = "not steady after max_periods = " + std::to_string(so.max_periods) +
                       " periods (tolerance " + std::to_string(so.tolerance) + ")";
+    // An undamped model keeps its starting transient forever: say so instead of leaving the
+    // user to raise max_periods (the energy balance gives D per period for free).
+    if (Undamped(out.energy)) {
+      summary.message +=
+          ": the model dissipates no energy (D = 0 in every period: no damping in the meshes, "
+          "bearings, shafts or teeth), so the free vibration started from the static "
+          "equilibrium never decays and no steady state exists; add damping (a mesh's "
+          "damping_ratio, the [mesh.contact] damping of a tooth-contact mesh, bearing damping)";
+    } else {
+      summary.message += UndampedModesNote(model);
+    }
   }
 
   // Recording (also after a non-steady end, so that the last periods can be inspected; never

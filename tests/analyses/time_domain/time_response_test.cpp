@@ -178,6 +178,22 @@ TEST(TimeResponse, MaxPeriodsGivesNoVerdict) {
   EXPECT_EQ(r.steady, SteadyVerdict::kUndetermined);
   EXPECT_EQ(r.periods, 2);
   EXPECT_EQ(r.final_state.size(), 4);  // what was computed is kept
+  // Damped (ζ = 0.05): not steady only because max_periods is short — no "undamped" diagnosis.
+  EXPECT_EQ(r.summary.message.find("dissipates no energy"), std::string::npos) << r.summary.message;
+}
+
+// An undamped model (ζ = 0: C = 0 by construction, so D = 0 exactly) started from the static
+// equilibrium keeps its free vibration at √(k/m_e) forever: the run that does not settle says why.
+TEST(TimeResponse, UndampedModelSaysWhyItNeverSettles) {
+  TorsionalCase c;
+  c.zeta = 0.0;
+  TimeResponseOptions o;
+  o.steady.max_periods = 20;
+  const TimeResponse r = SimulateSteadyState(c.Model(), 1500.0, o);
+  EXPECT_EQ(r.summary.status, Status::kNotConverged);
+  EXPECT_EQ(r.steady, SteadyVerdict::kUndetermined);
+  EXPECT_NE(r.summary.message.find("dissipates no energy"), std::string::npos) << r.summary.message;
+  for (const EnergyBalancePeriod& e : r.energy) EXPECT_EQ(e.dissipated, 0.0);
 }
 
 // The sparse factorization of generalized-α's iteration matrix gives the same closed form.
