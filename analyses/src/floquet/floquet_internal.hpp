@@ -56,6 +56,10 @@ struct StateSystem {
   /// True when every A(t) of `evaluate` has MakeStateSystem's companion form [[0, ω_s I], [X, Y]]
   /// exactly (zero and ω_s·I upper blocks): the Magnus commutators then go by blocks (magnus.cpp).
   bool companion = false;
+  /// True when `evaluate` is a verified trigonometric polynomial in t with no kinks
+  /// (PreparedFloquet): A(t) is entire, so the Magnus method's asymptotic order is its nominal
+  /// one and MagnusMonodromyMeasured skips the order-measuring runs (magnus.cpp).
+  bool analytic = false;
   /// Where A(t) is not smooth [s]: sorted, distinct, in (0, T) (0 and T are always step ends);
   /// from PeriodicSecondOrderSystem::kinks_s and the step starts (MagnusGrid).
   std::vector<double> kinks;

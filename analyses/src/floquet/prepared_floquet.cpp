@@ -164,6 +164,7 @@ FloquetResult PreparedFloquet::Solve(const Block& block, const FloquetOptions& o
   sys.period_s = block.impl->period_phase / omega;
   for (double& t : sys.kinks) t /= omega;
   sys.evaluate = [impl = block.impl, omega](double t, MatrixX* A) { impl->Evaluate(omega * t, A); };
+  sys.analytic = sys.kinks.empty();  // A(θ) is the verified Fourier series: entire in t
   return internal::ComputeFloquetState(sys, options, FloquetMethod::kMagnus);
 }
 

@@ -2,7 +2,8 @@
 // on the same model — the ordinary path, which rebuilds the state system and assembles A(t) from
 // the model at every Magnus node — at every frequency and tolerance, and it must fall back to
 // that path where its Fourier series of A(θ) is not exact. Truths: ComputeFloquet(model) itself
-// (a different assembly of the same operator) and, for the series, the closed form of the hand
+// (a different assembly of the same operator; at a 100× tighter tolerance where the prepared run
+// uses the analytic series' known Magnus order) and, for the series, the closed form of the hand
 // core's stiffness k(1 + a cos θ + c sin 2θ): two harmonics.
 #include "geardyn/analyses/prepared_floquet.hpp"
 
@@ -10,6 +11,7 @@
 
 #include <cmath>
 #include <memory>
+#include <string>
 
 #include "floquet_test_support.hpp"
 
@@ -47,7 +49,25 @@ void ExpectSameResult(const FloquetResult& fast, const FloquetResult& ordinary,
   EXPECT_GE(fast.summary.error_estimate, ordinary.summary.error_estimate / 3.0) << where;
 }
 
-TEST(PreparedFloquetTest, SmoothHandPairEqualsComputeFloquetAtEveryFrequencyAndTolerance) {
+// The measured-order screening run on a prepared row takes the known order of the analytic A(θ)
+// (magnus.cpp MagnusMonodromyAnalytic), so its step counts are its own: the truth is then
+// ComputeFloquet on the ordinary path at a 100× tighter tolerance (model assembly per node and
+// the order measured from three runs): the same verdict, and the multipliers within the fast
+// run's estimate plus the reference's (the estimate bounds the true error).
+void ExpectWithinEstimate(const FloquetResult& fast, const FloquetResult& reference,
+                          const std::string& where) {
+  EXPECT_EQ(fast.method_used, reference.method_used) << where;
+  EXPECT_EQ(fast.verdict, reference.verdict) << where;
+  EXPECT_EQ(fast.marginal, reference.marginal) << where;
+  EXPECT_EQ(fast.summary.status, reference.summary.status) << where;
+  EXPECT_EQ(fast.period_s, reference.period_s) << where;
+  ASSERT_EQ(fast.multipliers.size(), reference.multipliers.size()) << where;
+  const double bound = fast.summary.error_estimate + reference.summary.error_estimate;
+  EXPECT_LE(MultiplierDistance(fast.multipliers, reference.multipliers), bound) << where;
+  EXPECT_LE(std::abs(fast.max_abs_multiplier - reference.max_abs_multiplier), bound) << where;
+}
+
+TEST(PreparedFloquetTest, SmoothHandPairMatchesComputeFloquetWithinTheEstimate) {
   // Damped and undamped (marginal) hand pairs; frequencies across the principal resonances.
   for (const double c_m : {0.0, 900.0}) {
     const auto model =
@@ -68,7 +88,9 @@ TEST(PreparedFloquetTest, SmoothHandPairEqualsComputeFloquetAtEveryFrequencyAndT
         const FloquetOptions o = Options(hz, tol);
         const std::string where = "c_m " + std::to_string(c_m) + ", " + std::to_string(hz) +
                                   " Hz, tol " + std::to_string(tol);
-        ExpectSameResult(prepared.Compute(o), ComputeFloquet(*model, o), where);
+        FloquetOptions tight = o;
+        tight.tolerance = 1e-2 * tol;
+        ExpectWithinEstimate(prepared.Compute(o), ComputeFloquet(*model, tight), where);
       }
     }
   }
@@ -137,11 +159,11 @@ TEST(PreparedFloquetTest, TheWholeModelWithoutTheBlockSplitToo) {
   const PreparedFloquet prepared(model, o);
   EXPECT_TRUE(prepared.prepared());
   o.mesh_frequency_hz = 2500.0;
-  const FloquetResult fast = prepared.Compute(o), ordinary = ComputeFloquet(*model, o);
+  FloquetOptions tight = o;
+  tight.tolerance = 1e-8;
+  const FloquetResult fast = prepared.Compute(o), reference = ComputeFloquet(*model, tight);
   EXPECT_EQ(fast.summary.counters.count("blocks"), 0u);
-  EXPECT_EQ(fast.summary.counters.at("steps"), ordinary.summary.counters.at("steps"));
-  EXPECT_EQ(fast.verdict, ordinary.verdict);
-  EXPECT_NEAR(fast.max_abs_multiplier, ordinary.max_abs_multiplier, 1e-12);
+  ExpectWithinEstimate(fast, reference, "whole model");
 }
 
 TEST(PreparedFloquetTest, InvalidOptionsThrowAsComputeFloquet) {
