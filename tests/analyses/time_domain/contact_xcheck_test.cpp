@@ -6,9 +6,13 @@
 /// * rigid unmodified involutes with the linear law f = k δ: the law of gearing gives every pair
 ///   on the path the same penetration δ_η, so the loaded STE is F/(k n(θ)) with F = T/r_b1 and
 ///   n = 1 or 2 pairs; the fraction of two-pair samples is ε_α − 1 (closed form of the geometry);
-/// * with linear pinion tip relief the penetration of pair j is δ_η − r(x_j), so the STE is the
-///   water level δ of Σ k (δ − r(x_j))⁺ = F (closed form, any load);
-/// * K(θ) and loaded STE against the contact-line LTV core of the same pair (k_l = k/B).
+/// * with linear tip relief (both gears) the penetration of pair j is δ_η − r(x_j), so the STE is
+///   the water level δ of Σ k (δ − r(x_j))⁺ = F (closed form, any load);
+/// * K(θ) and loaded STE against the contact-line LTV core of the same pair (k_l = k/B), the
+///   difference (tip-corner contact before A) against independent corner geometry;
+/// * Kim's law: K and STE per zone from the law linearised at the operating load.
+/// Backlash at the system level is not here: the static solve cannot start with the flanks apart
+/// (docs/design.md, "Contact simulator: cross-checks").
 #include <gtest/gtest.h>
 
 #include <algorithm>
