@@ -168,7 +168,7 @@ def main():
         print(f"{torque:g} N m: Kbar {kbar:.4g} N/m, slice k {k_len:.4g} N/m2, c_m {c_m:.4g} N s/m",
               file=sys.stderr)
         rc, nhb = run([a.geardyn, "hb", SCENE] + sets(slice_sets) +
-                      ["--torque" if False else "--set", f"operating_point.torque={torque:g}",
+                      ["--set", f"operating_point.torque={torque:g}",
                        "--set", f"load.brake.torque={torque:g}", "--nonlinear",
                        "--mesh-frequency", "700:3500:200", "--stability", "none", "--json"],
                       os.path.join(a.out, f"kim-nhb-{torque:g}Nm.json"))
