@@ -1,0 +1,208 @@
+#!/usr/bin/env python3
+"""Kim et al. (2015) test case on the Kahraman-Blankenship rig: RMS DTE vs mesh frequency.
+
+For each mean torque (default 100, 200, 300 N m) this script
+  1. runs `geardyn simulate` stepped up and down sweeps of the rig with tooth-contact teeth,
+     type A (teeth = "revolute") and type B (teeth = "bushing"), Kim's values (Tables 2-3):
+     k = 39.3e6 N/mm^1.5, c = 1.0, m1 = 1.5, m2 = 1.0, m3 = 0.25 (the [mesh.contact] defaults),
+     k_b = 11.5e6 N mm/rad, c_b = 0.2 N mm s/rad;
+  2. traces the nonlinear harmonic balance (`geardyn hb --nonlinear`) of the slice model of the
+     same pair, matched to the contact model (see MatchedSliceSets below);
+  3. writes docs-ready SVG plots kim-<T>Nm.svg and the raw JSON into --out.
+
+Usage: kim_qfb_sweeps.py --geardyn build/test/apps/geardyn --out docs/figures [--points 57]
+       [--torques 100,200,300] [--teeth revolute,bushing] [--nhb-only]
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+
+SCENE = "builtin:kahraman-blankenship-rig"
+MESH = "mesh.pinion-wheel"
+# Kim Table 3: root joint of every tooth, SI.
+TEETH_SETS = [f"{MESH}.model=contact", f"{MESH}.contact.bending_stiffness=11.5e3",
+              f"{MESH}.contact.bending_damping=2.0e-4"]
+# Rig geometry (the scene): base radius, tip radius, centre distance, module, face width [m].
+R_B, R_A, A, M, B = 0.070477, 0.078, 0.150, 0.003, 0.020
+ALPHA = math.radians(20.0)
+# Kim Eq. (12) law of the [mesh.contact] defaults (SI): k [N/m^1.5], c [N s/m^1.25], m3.
+K_LAW, C_LAW, M3 = 1.24278e12, 5623.41, 0.25
+# Scene-level modal damping of the NHB model only: the rig's bearings carry no damping, and the
+# slice model's translational modes (~10 kHz) are met by mesh harmonics; the contact model damps
+# them through its contact law.
+NHB_MODAL_RATIO = 0.01
+
+
+def contact_ratio():
+    """Transverse contact ratio of the rig: g_alpha / p_b (closed form for a spur pair)."""
+    g = 2.0 * math.sqrt(R_A**2 - R_B**2) - A * math.sin(ALPHA)
+    return g / (math.pi * M * math.cos(ALPHA))
+
+
+def run(cmd, out_json):
+    print("+", " ".join(cmd), file=sys.stderr, flush=True)
+    with open(out_json, "w") as f:
+        rc = subprocess.run(cmd, stdout=f).returncode
+    with open(out_json) as f:
+        text = f.read()
+    return rc, (json.loads(text) if text.strip() else None)
+
+
+def sets(items):
+    out = []
+    for s in items:
+        out += ["--set", s]
+    return out
+
+
+def matched_slice_sets(geardyn, torque, out):
+    """Slice model matched to the type-A contact model at the operating load.
+
+    Stiffness: the contact model's quasi-static mean mesh stiffness Kbar (`simulate
+    --quasi-static`, Hertz law and tooth joints linearised at the load) = the slice model's
+    k * b * eps_alpha (mean contact length of a spur pair), so the two have the same mean mesh
+    stiffness and the same mesh resonance. Damping: Kim's damper c * delta^m3 * ddelta/dt per
+    loaded pair at the mean per-pair load F/eps_alpha (Hertz indentation delta = (F/k)^(2/3)),
+    times eps_alpha pairs on average = the slice model's mesh damping c_m [N s/m] (the contact
+    damper is in series with the tooth springs there, so c_m is an upper bound of its effect).
+    """
+    eps = contact_ratio()
+    rc, qs = run([geardyn, "simulate", SCENE] + sets(TEETH_SETS + [f"{MESH}.contact.teeth=revolute"]) +
+                 ["--torque", str(torque), "--quasi-static", "--samples-per-period", "64", "--json"],
+                 os.path.join(out, f"kim-qs-{torque:g}Nm.json"))
+    if rc != 0 or qs is None or qs.get("status") != "success":
+        sys.exit(f"quasi-static at {torque} N m failed (exit {rc})")
+    kbar = qs["runs"][0]["meshes"][0]["mean_stiffness_n_per_m"]
+    k_len = kbar / (B * eps)
+    f_pair = torque / R_B / eps
+    c_m = eps * C_LAW * (f_pair / K_LAW) ** (2.0 * M3 / 3.0)
+    return kbar, k_len, c_m, [f"{MESH}.model=slices", f"{MESH}.stiffness_per_length={k_len:.6g}",
+                              f"{MESH}.damping={c_m:.6g}", f"damping.modal_ratio={NHB_MODAL_RATIO}"]
+
+
+# Upper end of the RMS DTE axis [um]: Kim's figures end at 20 um; larger values (the slice
+# model's superharmonic resonance with back-flank contact) are drawn clipped at the top.
+Y_CLIP = 30.0
+
+
+def polyline(xs, ys, sx, sy, color, dash=""):
+    pts = " ".join(f"{sx(x):.1f},{sy(min(y, Y_CLIP)):.1f}" for x, y in zip(xs, ys) if math.isfinite(y))
+    d = f' stroke-dasharray="{dash}"' if dash else ""
+    return f'<polyline fill="none" stroke="{color}" stroke-width="1.5"{d} points="{pts}"/>'
+
+
+def svg(path, torque, nhb, series, note):
+    """RMS DTE [um] vs mesh frequency [Hz]; nhb = (f, rms) segments, series = label -> points."""
+    W, H, L, R, T, Bm = 720, 440, 70, 20, 40, 60
+    fmin, fmax = 700.0, 3500.0
+    ymax = 1.0
+    for _, ys in nhb:
+        ymax = max([ymax] + [y for y in ys if math.isfinite(y)])
+    for pts in series.values():
+        ymax = max([ymax] + [p[1] for p in pts if math.isfinite(p[1])])
+    ymax = min(math.ceil(ymax * 1.1), Y_CLIP)
+    sx = lambda f: L + (f - fmin) / (fmax - fmin) * (W - L - R)
+    sy = lambda y: H - Bm - y / ymax * (H - T - Bm)
+    e = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{H}" font-family="sans-serif" font-size="12">',
+         f'<rect width="{W}" height="{H}" fill="white"/>',
+         f'<text x="{W/2}" y="20" text-anchor="middle" font-size="14">Kahraman-Blankenship rig, {torque:g} N m: RMS DTE (Kim et al. 2015 test case)</text>']
+    for i in range(8):
+        f = 700 + 400 * i
+        e.append(f'<line x1="{sx(f):.1f}" y1="{H-Bm}" x2="{sx(f):.1f}" y2="{T}" stroke="#ddd"/>')
+        e.append(f'<text x="{sx(f):.1f}" y="{H-Bm+16}" text-anchor="middle">{f}</text>')
+    step = max(1, int(ymax / 8))
+    for y in range(0, int(ymax) + 1, step):
+        e.append(f'<line x1="{L}" y1="{sy(y):.1f}" x2="{W-R}" y2="{sy(y):.1f}" stroke="#ddd"/>')
+        e.append(f'<text x="{L-6}" y="{sy(y)+4:.1f}" text-anchor="end">{y}</text>')
+    e.append(f'<text x="{(L+W-R)/2}" y="{H-Bm+34}" text-anchor="middle">mesh frequency [Hz]</text>')
+    e.append(f'<text x="18" y="{(T+H-Bm)/2}" text-anchor="middle" transform="rotate(-90 18 {(T+H-Bm)/2})">RMS DTE [µm]</text>')
+    for xs, ys in nhb:
+        e.append(polyline(xs, ys, sx, sy, "black"))
+    colors = {"type A up": "#1f77b4", "type A down": "#1f77b4", "type B up": "#d62728",
+              "type B down": "#d62728", "type A": "#1f77b4", "type B": "#d62728"}
+    legend = [("nonlinear HB, slice model (matched)", "black", "line")]
+    for label, pts in series.items():
+        c = colors.get(label, "#2ca02c")
+        mark = "^" if "up" in label else ("v" if "down" in label else "o")
+        for f, y in pts:
+            if not math.isfinite(y):
+                continue
+            x0, y0 = sx(f), sy(min(y, Y_CLIP))
+            if mark == "^":
+                e.append(f'<path d="M{x0-4:.1f},{y0+3:.1f} L{x0+4:.1f},{y0+3:.1f} L{x0:.1f},{y0-4:.1f} Z" fill="none" stroke="{c}"/>')
+            elif mark == "v":
+                e.append(f'<path d="M{x0-4:.1f},{y0-3:.1f} L{x0+4:.1f},{y0-3:.1f} L{x0:.1f},{y0+4:.1f} Z" fill="{c}" stroke="{c}"/>')
+            else:
+                e.append(f'<circle cx="{x0:.1f}" cy="{y0:.1f}" r="4" fill="none" stroke="{c}"/>')
+        legend.append((f"contact model, {label}", c, mark))
+    for i, (text, c, kind) in enumerate(legend):
+        y = T + 14 + 16 * i
+        e.append(f'<text x="{W-R-10}" y="{y}" text-anchor="end" fill="{c}">{text} ({"—" if kind=="line" else kind})</text>')
+    e.append(f'<text x="{L}" y="{H-8}" font-size="10">{note}</text>')
+    e.append("</svg>")
+    with open(path, "w") as f:
+        f.write("\n".join(e) + "\n")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--geardyn", default="build/test/apps/geardyn")
+    ap.add_argument("--out", default="docs/figures")
+    ap.add_argument("--torques", default="100,200,300")
+    ap.add_argument("--teeth", default="revolute,bushing")
+    ap.add_argument("--points", type=int, default=57, help="speeds per branch (700-3500 Hz)")
+    ap.add_argument("--tolerance", default="1e-6")
+    ap.add_argument("--steady-tolerance", default="1e-4")
+    ap.add_argument("--max-periods", default="200")
+    ap.add_argument("--nhb-only", action="store_true", help="only the NHB curves (fast)")
+    ap.add_argument("--extra-json", action="append", default=[],
+                    help="LABEL=FILE: single-speed `simulate --json` results to plot as points")
+    a = ap.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    names = {"revolute": "type A", "bushing": "type B"}
+    for torque in [float(t) for t in a.torques.split(",")]:
+        kbar, k_len, c_m, slice_sets = matched_slice_sets(a.geardyn, torque, a.out)
+        print(f"{torque:g} N m: Kbar {kbar:.4g} N/m, slice k {k_len:.4g} N/m2, c_m {c_m:.4g} N s/m",
+              file=sys.stderr)
+        rc, nhb = run([a.geardyn, "hb", SCENE] + sets(slice_sets) +
+                      ["--set", f"operating_point.torque={torque:g}",
+                       "--set", f"load.brake.torque={torque:g}", "--nonlinear",
+                       "--mesh-frequency", "700:3500:200", "--stability", "none", "--json"],
+                      os.path.join(a.out, f"kim-nhb-{torque:g}Nm.json"))
+        segs = {}
+        for p in (nhb or {}).get("points", []):
+            ok = p["status"] == "success" and p["meshes"]
+            segs.setdefault((p.get("segment", 0), p.get("branch", 0)), ([], []))
+            segs[(p.get("segment", 0), p.get("branch", 0))][0].append(p["mesh_frequency_hz"])
+            segs[(p.get("segment", 0), p.get("branch", 0))][1].append(
+                p["meshes"][0]["rms_dte_m"] * 1e6 if ok else float("nan"))
+        series = {}
+        if not a.nhb_only:
+            for teeth in a.teeth.split(","):
+                rc, sim = run([a.geardyn, "simulate", SCENE] + sets(TEETH_SETS + [f"{MESH}.contact.teeth={teeth}"]) +
+                              ["--torque", f"{torque:g}", "--mesh-frequency", f"700:3500:{a.points}",
+                               "--sweep", "both", "--tolerance", a.tolerance, "--steady-tolerance",
+                               a.steady_tolerance, "--max-periods", a.max_periods, "--progress", "--json"],
+                              os.path.join(a.out, f"kim-{teeth}-{torque:g}Nm.json"))
+                for p in (sim or {}).get("points", []):
+                    label = f"{names[teeth]} {p['branch']}"
+                    y = p["meshes"][0]["rms_dte_m"] * 1e6 if p["status"] == "success" else float("nan")
+                    series.setdefault(label, []).append((p["mesh_frequency_hz"], y))
+        for item in a.extra_json:
+            label, path = item.split("=", 1)
+            with open(path) as f:
+                sim = json.load(f)
+            for p in sim.get("points", []):
+                if abs(p["torque_nm"] - torque) < 1e-9:
+                    series.setdefault(label, []).append(
+                        (p["mesh_frequency_hz"], p["meshes"][0]["rms_dte_m"] * 1e6))
+        note = (f"slice model: k = {k_len:.3g} N/m² (contact model's quasi-static mean K = {kbar:.3g} N/m, "
+                f"type A), c_m = {c_m:.3g} N·s/m (Kim damper at the mean pair load), modal ratio {NHB_MODAL_RATIO}")
+        svg(os.path.join(a.out, f"kim-{torque:g}Nm.svg"), torque, list(segs.values()), series, note)
+
+
+if __name__ == "__main__":
+    main()
