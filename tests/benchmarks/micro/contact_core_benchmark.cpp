@@ -10,25 +10,15 @@
 
 #include <cmath>
 
-#include "geardyn/common/units.hpp"
 #include "geardyn/models/contact/contact_mesh_core.hpp"
 #include "geardyn/models/mesh/mesh_frame.hpp"
+#include "support/contact_pairs.hpp"
 
 namespace geardyn {
 namespace {
 
 void BM_ContactCoreCalcForces(benchmark::State& state) {
-  GearPairSpec spec;
-  spec.normal_module = 3e-3;
-  spec.normal_pressure_angle = DegToRad(20.0);
-  spec.pinion.teeth = 50;
-  spec.gear.teeth = 50;
-  spec.pinion.face_width = 0.02;
-  spec.gear.face_width = 0.02;
-  spec.pinion.tip_diameter = 0.156;
-  spec.gear.tip_diameter = 0.156;
-  spec.center_distance = 0.150;
-  const GearPairGeometry pair = CalcGearPairGeometry(spec);
+  const GearPairGeometry pair = CalcGearPairGeometry(test::KimRigPair());
   const MeshFrame frame = CalcMeshFrame(pair, Vector3::Zero(), 0.0, 1);
   ContactMeshDef def;
   def.teeth = static_cast<ToothBodyType>(state.range(0));

@@ -12,10 +12,10 @@
 #include <cstdio>
 #include <vector>
 
-#include "geardyn/common/units.hpp"
 #include "geardyn/models/contact/biarc_profile.hpp"
 #include "geardyn/models/contact/contact_mesh_core.hpp"
 #include "geardyn/models/mesh/mesh_frame.hpp"
+#include "support/contact_pairs.hpp"
 #include "wp_common.hpp"
 
 namespace {
@@ -25,19 +25,7 @@ using namespace geardyn;
 constexpr int kPhases = 64;
 constexpr double kTorque = 100.0;  // N·m on the pinion
 
-GearPairGeometry RigPair() {
-  GearPairSpec spec;
-  spec.normal_module = 3e-3;
-  spec.normal_pressure_angle = DegToRad(20.0);
-  spec.pinion.teeth = 50;
-  spec.gear.teeth = 50;
-  spec.pinion.face_width = 0.02;
-  spec.gear.face_width = 0.02;
-  spec.pinion.tip_diameter = 0.156;
-  spec.gear.tip_diameter = 0.156;
-  spec.center_distance = 0.150;
-  return CalcGearPairGeometry(spec);
-}
+GearPairGeometry RigPair() { return CalcGearPairGeometry(test::KimRigPair()); }
 
 double Phase(int i) { return -std::acos(-1.0) + 2.0 * std::acos(-1.0) * (i + 0.5) / kPhases; }
 
