@@ -57,8 +57,8 @@ void Case(const char* name, const SystemModel& model, double f_m) {
       o.integration.spectral_radius = v.rho;
       o.integration.locate_events = v.events;
       const TimeResponse r = SimulateSteadyState(model, f_m, o);
-      const double err = r.summary.ok() ? std::abs(r.meshes[0].rms_dte - rms_ref) / rms_ref
-                                        : std::nan("");
+      const double err =
+          r.summary.ok() ? std::abs(r.meshes[0].rms_dte - rms_ref) / rms_ref : std::nan("");
       const std::string label = std::string(name) + "_" + v.label;
       wp::Row(label.c_str(), tol, r.summary.wall_time_s, err,
               static_cast<double>(r.summary.counters.at("force_evaluations")));
