@@ -1,23 +1,14 @@
 /// @file
-/// @brief The quasi-static (slow-roll) solve of `geardyn simulate --quasi-static`: at S uniform
-/// mesh phases over one mesh cycle, the static equilibrium under the scene's loads
-/// (SolveTimeDomainStatic, time_response.hpp) and, at it, each mesh's loaded static transmission
-/// error and tangent mesh stiffness — the K(θ) and STE that build an LTV mesh from the contact or
-/// slice model (issue 14; mesh_parameters_export.hpp writes them).
-///
-/// **Per mesh k and sample s** (θ_s = 2πs/S, the system phase chosen so that the mesh's own
-/// phase r_k θ + φ_k equals θ_s):
-/// * STE_s = δ_η = G_η q (the loaded TE along the tooth normal, probes.hpp);
-/// * the 2×2 tangent K2 = ∂F/∂δ of the mesh force pair F = [F_η, M_ζ] at the static state:
-///   linear core EvalStiffnessCore (exact, state-independent); slice core the slice Jacobian
-///   (the loaded slices); nonlinear core its n×n tangent with the internal coordinates condensed
-///   (Schur complement, they are in equilibrium) to the 12 body coordinates, K12, then
-///   projected on the mesh deflections, K2 = A K12 Aᵀ with A = (G Gᵀ)⁺ G — exact when
-///   the body forces act through G (K12 = Gᵀ K2 G), otherwise the least-squares pair;
-/// * the channels (K, K·h, K·μ·b²) = (K2₀₀, −K2₀₁, K2₁₁) and ε_η = δ_η − (K2⁺ F)_η, so that the
-///   LTV mesh's static deflection ε + K2⁻¹F reproduces the STE at this load.
-/// The mesh force F: EvalMeshProbe for linear and slice cores; −A f12 for a nonlinear core (f12
-/// the core's force on the 12 body coordinates).
+/// @brief The quasi-static (slow-roll) export of `geardyn simulate --quasi-static`: the engine's
+/// SimulateQuasiStatic (time_response.hpp) sampled per mesh at S uniform phases of the mesh's own
+/// cycle (QuasiStaticSampling::kMeshCycle), turned into the `[mesh.parameters]` samples that
+/// mesh_parameters_export.hpp writes — the K(θ) and STE that build an LTV mesh from the contact
+/// or slice model (issue 14). No solve of its own: the engine gives, per mesh and sample, the
+/// loaded STE δ_η, the symmetric tangent K2 = ∂F/∂δ (contact core: its tooth coordinates
+/// condensed, projected through (G Gᵀ)⁻¹G), the mesh force pair F (contact core: F = −(G Gᵀ)⁻¹G
+/// f₁₂, = T/r_b statically) and ε_η = δ_η − (K2⁺F)_η, so that the LTV mesh's static deflection
+/// ε + K2⁻¹F reproduces the STE at this load. Here: the channels (K, K·h, K·μ·b²) =
+/// (max(K2₀₀, 0), −K2₀₁, K2₁₁) and the checks that one table can hold the mesh.
 #pragma once
 
 #include <vector>

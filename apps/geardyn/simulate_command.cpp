@@ -32,6 +32,7 @@
 #include "geardyn/models/scene/scene_reader.hpp"
 #include "geardyn/models/system/scene_system.hpp"
 #include "geardyn/output_files.hpp"
+#include "geardyn/overlay_match.hpp"
 #include "geardyn/quasi_static.hpp"
 #include "geardyn/simulate_report.hpp"
 
@@ -44,6 +45,17 @@ constexpr double kProgressInterval = 0.5;
 constexpr int kOverlayHarmonics = 24;
 // Points of the --overlay-hb linear HB curve over the sweep's range.
 constexpr int kOverlayLinearPoints = 200;
+// Low-speed warning: a run that must follow more oscillations of the highest mode than this
+// within its fewest periods (EstimateTimeRun: f_max × min_simulated_time_s). Measured on the rig
+// at 20 Hz (docs/benchmarks.md "Low speeds"): generalized-α, 902 030 steps for 2 periods, 3.4 s
+// user ≈ 1.4 ms per highest-mode cycle, so 1e4 cycles ≈ 14 s before any steady-state test —
+// and 1/f_m more below (0.5 Hz: 2.5e5 cycles, minutes).
+constexpr double kLowSpeedModeCycles = 1e4;
+// High-speed warning: f_m above this multiple of the highest natural frequency.
+constexpr double kHighSpeedFactor = 100.0;
+// Load warning: a static deflection δ_η above this fraction of the normal base pitch p_bn (rated
+// loads give δ ≲ 1e-3 p_bn: ≈ 10–30 µm on module 3–10 mm teeth).
+constexpr double kDeflectionPitchFraction = 0.02;
 
 struct SimulateOptions {
   SceneCommandOptions scene;
@@ -194,14 +206,21 @@ HbOverlay ComputeOverlay(const SimulateOptions& o, const Scene& scene_t, double 
   so.analysis = "hb";
   SystemModel model = BuildSceneSystem(scene_t, TimeDomainSystemOptions()).model;
   if (HasNonlinearCore(model)) {
-    // The slice model of the same pair (what the Kim figures compare with).
-    std::vector<std::string> overrides = o.scene.overrides;
-    for (const MeshDef& m : scene_t.meshes) overrides.push_back("mesh." + m.name + ".model=slices");
+    // The slice model of the same pair matched to the contact model at this load
+    // (overlay_match.hpp: K̄ from both quasi-static rolls, c_m from the contact law's damping at
+    // the mean contact load), as the Kim figures compare.
+    const auto build = [&](const std::vector<std::string>& extra) {
+      std::vector<std::string> overrides = o.scene.overrides;
+      overrides.insert(overrides.end(), extra.begin(), extra.end());
+      return BuildSceneSystem(AtTorque(LoadScene(o.scene.scene, overrides), torque), so).model;
+    };
     try {
-      model = BuildSceneSystem(AtTorque(LoadScene(o.scene.scene, overrides), torque), so).model;
+      if (o.progress) err << "geardyn simulate: --overlay-hb: matching the slice model\n";
+      overlay.matches = MatchSlicesToContact(model, scene_t, build, warnings);
+      model = build(MatchedSliceOverrides(overlay.matches));
     } catch (const InvalidInput& e) {
-      warnings->push_back(std::string("--overlay-hb: the slice model of the scene cannot be "
-                                      "built, no overlay: ") +
+      warnings->push_back(std::string("--overlay-hb: the slice model matched to the contact "
+                                      "model cannot be built, no overlay: ") +
                           e.what());
       return overlay;
     }
@@ -210,7 +229,7 @@ HbOverlay ComputeOverlay(const SimulateOptions& o, const Scene& scene_t, double 
   const double hi = *std::max_element(frequencies.begin(), frequencies.end());
   if (o.progress) err << "geardyn simulate: --overlay-hb at " << torque << " N·m\n";
   if (model.time_dependence() == TimeDependence::kNonlinear) {
-    overlay.label = "nonlinear HB";
+    overlay.label = overlay.matches.empty() ? "nonlinear HB" : "nonlinear HB (matched slices)";
     SystemNhbOptions nhb;
     nhb.hb.harmonics = kOverlayHarmonics;
     nhb.start_hz = lo;
@@ -268,6 +287,64 @@ TimeProgress MakeProgress(const SimulateOptions& o, std::ostream& err, double to
   };
 }
 
+// The pre-run checks of one torque (EstimateTimeRun at the lowest and highest mesh frequency):
+// a run too long for its speed, a speed far above every mode, a load beyond the teeth's scale.
+std::vector<std::string> PreRunWarnings(const Scene& scene_t, const SystemModel& model,
+                                        const std::vector<double>& frequencies,
+                                        const TimeResponseOptions& options, double torque) {
+  const double lo = *std::min_element(frequencies.begin(), frequencies.end());
+  const double hi = *std::max_element(frequencies.begin(), frequencies.end());
+  const TimeRunEstimate e = EstimateTimeRun(model, lo, options);
+  std::vector<std::string> out;
+  char text[640];
+  if (!e.summary.ok()) {
+    std::snprintf(text, sizeof(text),
+                  "%g N·m: the pre-run checks could not solve the static state: %s", torque,
+                  e.summary.message.c_str());
+    out.emplace_back(text);
+    return out;
+  }
+  if (e.highest_mode_cycles > kLowSpeedModeCycles) {
+    std::snprintf(text, sizeof(text),
+                  "mesh frequency %g Hz is very low: a run to steady state integrates at least "
+                  "%ld periods (%.3g s) holding %.3g oscillations of the highest mode (%.4g Hz), "
+                  "more than %.0e — expect minutes or more; at such speeds the response is "
+                  "quasi-static: `geardyn simulate --quasi-static` gives that limit (f_m → 0) in "
+                  "seconds",
+                  lo, e.min_periods, e.min_simulated_time_s, e.highest_mode_cycles,
+                  e.highest_frequency_hz, kLowSpeedModeCycles);
+    out.emplace_back(text);
+  }
+  if (hi > kHighSpeedFactor * e.highest_frequency_hz) {
+    std::snprintf(text, sizeof(text),
+                  "mesh frequency %g Hz is %.3g times the highest natural frequency of the "
+                  "system (%.4g Hz): every mode responds quasi-statically to its inertia, the "
+                  "teeth barely move — far outside any gear's operating range (check the units: "
+                  "mesh frequency in Hz)",
+                  hi, hi / e.highest_frequency_hz, e.highest_frequency_hz);
+    out.emplace_back(text);
+  }
+  for (std::size_t k = 0; k < e.static_deflection.size(); ++k) {
+    const std::string& name = model.meshes()[k].name;
+    const auto def = std::find_if(scene_t.meshes.begin(), scene_t.meshes.end(),
+                                  [&](const MeshDef& m) { return m.name == name; });
+    if (def == scene_t.meshes.end()) continue;
+    const double pitch = def->geometry.normal_base_pitch;
+    const double delta = std::abs(e.static_deflection[k]);
+    if (pitch > 0.0 && delta > kDeflectionPitchFraction * pitch) {
+      const double backlash = def->geometry.backlash_normal;
+      std::snprintf(text, sizeof(text),
+                    "%g N·m: mesh %s deflects %.4g µm statically, %.3g %% of its normal base "
+                    "pitch (%.4g mm)%s — beyond the elastic range of gear teeth (rated loads give "
+                    "≲ 0.1 %%); the results are not physical (check the torque's units: N·m)",
+                    torque, name.c_str(), 1e6 * delta, 100.0 * delta / pitch, 1e3 * pitch,
+                    backlash > 0.0 && delta > backlash ? " and exceeds the backlash" : "");
+      out.emplace_back(text);
+    }
+  }
+  return out;
+}
+
 int RunQuasiStatic(const SimulateOptions& o, const Scene& scene, const std::vector<double>& torques,
                    std::ostream& out) {
   nlohmann::json report = {{"scene", scene.source}, {"mode", "quasi_static"}};
@@ -286,10 +363,17 @@ int RunQuasiStatic(const SimulateOptions& o, const Scene& scene, const std::vect
     nlohmann::json meshes = nlohmann::json::array();
     for (const QuasiStaticMesh& m : qs.meshes) {
       const MeshParameterSamples& p = m.parameters;
-      std::ostringstream head;
-      head << "geardyn simulate --quasi-static " << scene.source << " at " << torque << " N·m";
-      toml += FormatMeshParametersToml(p, {head.str()}) + "\n";
-      set += FormatMeshParametersOverride(p) + "\n";
+      if (p.stiffness.empty()) {  // a failed roll: this mesh was not reached
+        meshes.push_back({{"name", p.mesh}, {"samples", 0}});
+        continue;
+      }
+      // A table holds one whole mesh cycle: a failed (partial) roll writes none.
+      if (static_cast<int>(p.stiffness.size()) == o.samples_per_period) {
+        std::ostringstream head;
+        head << "geardyn simulate --quasi-static " << scene.source << " at " << torque << " N·m";
+        toml += FormatMeshParametersToml(p, {head.str()}) + "\n";
+        set += FormatMeshParametersOverride(p) + "\n";
+      }
       const auto [kmin, kmax] = std::minmax_element(p.stiffness.begin(), p.stiffness.end());
       const auto [smin, smax] = std::minmax_element(m.loaded_ste.begin(), m.loaded_ste.end());
       double kmean = 0.0;
@@ -314,10 +398,14 @@ int RunQuasiStatic(const SimulateOptions& o, const Scene& scene, const std::vect
              ":force_n";
     }
     csv += "\n";
-    const int s_count = qs.meshes.empty() ? 0 : static_cast<int>(qs.meshes[0].loaded_ste.size());
+    // Rows: the samples every mesh has (all of them unless the roll failed).
+    int s_count = o.samples_per_period;
+    for (const QuasiStaticMesh& m : qs.meshes) {
+      s_count = std::min(s_count, static_cast<int>(m.loaded_ste.size()));
+    }
     for (int s = 0; s < s_count; ++s) {
       char cell[40];
-      std::snprintf(cell, sizeof(cell), "%.17g", 2.0 * std::numbers::pi * s / s_count);
+      std::snprintf(cell, sizeof(cell), "%.17g", 2.0 * std::numbers::pi * s / o.samples_per_period);
       csv += cell;
       for (const QuasiStaticMesh& m : qs.meshes) {
         const MeshParameterSamples& p = m.parameters;
@@ -416,6 +504,12 @@ int RunSimulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) 
     }
     mesh_names.clear();
     for (const SystemMesh& m : built.model.meshes()) mesh_names.push_back(m.name);
+    for (const std::string& w :
+         PreRunWarnings(scene_t, built.model, frequencies, response_options, torque)) {
+      // Printed before the run starts (a long run must not be silent about why).
+      if (!o.scene.json) err << "geardyn simulate: warning: " << w << "\n";
+      warnings.push_back(w);
+    }
     const TimeProgress progress = MakeProgress(o, err, torque, start);
     if (mode == SimulateMode::kSingle) {
       TimeResponse r = SimulateSteadyState(built.model, frequencies.front(), response_options,
@@ -462,8 +556,36 @@ int RunSimulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) 
   info.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  const nlohmann::json report =
+  nlohmann::json report =
       MakeSimulateReport(info, mesh_names, points, warnings, single.get(), summaries);
+  if (single != nullptr) {
+    // Where the histories come from (a failed or cancelled run keeps its last transient period).
+    report["run"]["history"] = single->history_from_transient
+                                   ? "last_transient_period (not steady: the run failed or was "
+                                     "cancelled before steady state)"
+                               : single->steady == SteadyVerdict::kSteady ? "steady"
+                               : single->time.size() > 0                  ? "not_steady"
+                                                                          : "none";
+  }
+  if (!overlays.empty()) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const HbOverlay& ov : overlays) {
+      nlohmann::json matched = nlohmann::json::array();
+      for (const SliceMatch& m : ov.matches) {
+        matched.push_back({{"mesh", m.mesh},
+                           {"contact_mean_stiffness_n_per_m", m.contact_mean_stiffness},
+                           {"mean_force_n", m.mean_force},
+                           {"mean_contacts", m.mean_contacts},
+                           {"stiffness_per_length_n_per_m2", m.stiffness_per_length},
+                           {"damping_n_s_per_m", m.damping}});
+      }
+      list.push_back({{"torque_nm", ov.torque_nm},
+                      {"label", ov.label},
+                      {"points", ov.frequency.size()},
+                      {"matched_slice_model", matched}});
+    }
+    report["overlays"] = list;
+  }
   const std::string json_text = report.dump(2) + "\n";
   out << (o.scene.json ? json_text : FormatSimulateText(report));
   if (!o.scene.out_dir.empty()) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "geardyn/analyses/time_response.hpp"
+#include "geardyn/overlay_match.hpp"
 #include "geardyn/system/system_model.hpp"
 
 namespace geardyn::app {
@@ -56,6 +57,8 @@ struct HbOverlay {
   std::string label;              ///< legend, e.g. "nonlinear HB"
   std::vector<double> frequency;  ///< [Hz]
   std::vector<double> rms_dte;    ///< first mesh [m]; non-finite: a break
+  /// Contact meshes: the slice model matched to them (overlay_match.hpp); empty otherwise.
+  std::vector<SliceMatch> matches;
 };
 
 /// @brief The JSON report: "scene", "mode", "integrator" (requested), "tolerance",

@@ -215,6 +215,10 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
   long period_index = 0;
 
   Eigen::Index recorded = 0;  // samples written to the histories
+  // The DTE of the period being integrated and of the last complete one (kept as the history of
+  // a failed or cancelled run, which records nothing after the transient).
+  VectorX current_time = VectorX::Zero(samples), last_time;
+  MatrixX current_dte = MatrixX::Zero(num_meshes, samples), last_dte;
   auto record_meta = [&]() {
     out.steps = stepper->steps();
     out.events = stepper->events();
@@ -252,6 +256,8 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
       const double t = stepper->t();
       const double theta = stepper->Phase(t);
       EvalMeshDte(model, theta, stepper->x().head(sys.num_dofs), dte);
+      current_time(s - 1) = t;
+      current_dte.col(s - 1) = dte;
       for (int k = 0; k < num_meshes; ++k) {
         (*stats)[static_cast<std::size_t>(k)].Add(dte(k));
       }
@@ -303,6 +309,10 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
         scale > 0.0 ? std::abs(e.input_work - e.stored_change - e.dissipated) / scale : 0.0;
     out.energy.push_back(e);
     ++period_index;
+    if (!histories) {
+      last_time = current_time;
+      last_dte = current_dte;
+    }
     return true;
   };
 
@@ -451,6 +461,21 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
       h.contact_loss_fraction =
           stats[kk].count > 0 ? static_cast<double>(loss[kk]) / static_cast<double>(stats[kk].count)
                               : 0.0;
+    }
+  }
+  if (failed && last_time.size() > 0 && last_dte.allFinite()) {
+    // A failed or cancelled run: the last complete transient period as the DTE history (no
+    // forces, channels or element forces), flagged history_from_transient.
+    out.history_from_transient = true;
+    out.time = last_time;
+    out.meshes.resize(static_cast<std::size_t>(num_meshes));
+    for (int k = 0; k < num_meshes; ++k) {
+      MeshTimeHistory& h = out.meshes[static_cast<std::size_t>(k)];
+      h.name = model.meshes()[static_cast<std::size_t>(k)].name;
+      h.dte = last_dte.row(k).transpose();
+      h.mean_dte = h.dte.mean();
+      h.rms_dte = std::sqrt((h.dte.array() - h.mean_dte).square().mean());
+      h.peak_to_peak_dte = h.dte.maxCoeff() - h.dte.minCoeff();
     }
   }
   record_meta();

@@ -49,6 +49,7 @@
 
 #include <atomic>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -180,6 +181,10 @@ struct TimeResponse {
   /// Final state [x; v] (2·(num_dofs + internal)) and phase θ [rad] to continue from.
   VectorX final_state;
   double final_phase = 0.0;
+  /// True when the run failed or was cancelled during the transient and `time` / meshes[k].dte
+  /// (and their statistics) are those of the last complete integrated period — not a steady
+  /// state (force, channels and element forces empty). Added in session 25 ("qs").
+  bool history_from_transient = false;
   Summary summary;
 };
 
@@ -274,11 +279,27 @@ struct TimeDomainStatic {
 /// @throws InvalidInput on a non-finite θ₀ or a model without meshes.
 TimeDomainStatic SolveTimeDomainStatic(const SystemModel& model, double theta0 = 0.0);
 
+/// @brief How the quasi-static run samples the phase.
+enum class QuasiStaticSampling {
+  /// One roll of the system phase θ over period_multiple × P mesh periods, θ_s = 2πPs/S_tot,
+  /// shared by every mesh (mesh k at its own phase θ_k = r_k θ_s + φ_k).
+  kSystemPhase,
+  /// One roll per mesh k over one cycle of its OWN phase, θ_k,s = 2πs/S (system phase
+  /// θ = (θ_k,s − φ_k)/r_k): what a `[mesh.parameters]` table of mesh k holds (period_multiple
+  /// is not used). Costs S static solves per mesh.
+  kMeshCycle,
+};
+
 /// @brief Options of the quasi-static (slow-roll) run.
 struct QuasiStaticOptions {
   int samples_per_mesh = 64;  ///< θ samples per mesh period, in [1, 65536]
   /// Samples span period_multiple × P mesh periods (P the model's hunting period), in [1, 1000].
   int period_multiple = 1;
+  QuasiStaticSampling sampling = QuasiStaticSampling::kSystemPhase;
+  /// kMeshCycle: for a mesh whose core has P > 1 (e.g. a contact core counting its teeth apart),
+  /// one more static solve one mesh cycle later (θ_k = 2π), compared with the first sample
+  /// (QuasiStaticMesh::next_cycle_change).
+  bool check_next_cycle = true;
   /// False (with the field, value and bound in `why`) on an invalid value.
   bool IsValid(std::string* why) const;
 };
@@ -294,20 +315,81 @@ struct QuasiStaticMesh {
   /// internal coordinates condensed out and K2 = G⁺ᵀ K₁₂ G⁺ (G⁺ the pseudo-inverse of G) —
   /// what an LTV mesh's [mesh.parameters] tables hold.
   MatrixX stiffness;
+  // ---- Added for the [mesh.parameters] export (additive, session 25 "qs"). ----
+  VectorX theta;       ///< (samples) system phase θ of each sample [rad]
+  VectorX mesh_phase;  ///< (samples) the mesh's own phase θ_k = r_k θ + φ_k [rad]
+  /// (2 × samples) the static mesh force pair F = [F_η; M_ζ] [N; N·m] for every core form:
+  /// linear and slice cores their own F (EvalMeshProbe / EvalSliceForce at v = 0); a
+  /// NonlinearMeshCore the generalized force it puts on the 12 body coordinates, f₁₂, projected
+  /// on the mesh deflections, F = −A f₁₂ with A = (G Gᵀ)⁻¹ G — exact when the core acts through
+  /// δ = G q (f₁₂ = −Gᵀ F), and statically F_η = T/r_b for a pinion of base radius r_b held by
+  /// the mesh alone under torque T (torque balance about its axis). `force` row 0 equals F_η.
+  MatrixX force_pair;
+  /// (samples) ε_η = δ_η − (K2⁺ F)_η with K2 the symmetric tangent of `stiffness`: the
+  /// transmission error of an LTV mesh whose static deflection ε + K2⁻¹F reproduces the loaded
+  /// TE at this load (mesh_parameters_export.hpp) [m]; 0 where K2 = 0 (no contact: δ − 0).
+  VectorX transmission_error;
+  /// (samples) contacts at the static state: loaded slices / the core's num_contacts; −1 for a
+  /// linear core (always in contact).
+  Eigen::VectorXi contacts;
+  /// kMeshCycle with check_next_cycle and P > 1: max(|ΔK|/K, |ΔSTE|/|STE|) between the first
+  /// sample and the same mesh phase one cycle later [-] (0 for identical teeth, up to round-off);
+  /// NaN when not computed.
+  double next_cycle_change = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// @brief Result of SimulateQuasiStatic.
 struct QuasiStaticResult {
-  VectorX theta;  ///< (samples) system phase θ [rad]
+  /// (samples) system phase θ [rad] of the shared roll (kSystemPhase); kMeshCycle: the mesh-phase
+  /// grid θ_k,s = 2πs/S common to every mesh (each mesh's system phases in its `theta`).
+  VectorX theta;
   std::vector<QuasiStaticMesh> meshes;
-  Summary summary;  ///< a failed static solve ends the run (samples so far kept)
+  /// A failed static solve ends the run (samples so far kept; never a NaN; kMeshCycle: the
+  /// failing mesh keeps its samples so far, the meshes after it have none). Counters:
+  /// "samples", "static_solves", "regularised_starts" (solves that needed the regularised
+  /// start: flanks apart at the starting point), "free_play_samples" (equilibria with a mesh
+  /// out of contact under no net mesh load: the position in the backlash is not unique, the
+  /// start is kept; a warning says so).
+  Summary summary;
 };
 
 /// @brief Slow roll under load: the static equilibrium (SolveTimeDomainStatic) at every θ
-/// sample, each started from the previous one, with the loaded TE and tangent mesh stiffness.
+/// sample, each started from the previous one, with the loaded TE, tangent mesh stiffness, mesh
+/// force pair and the LTV transmission error ε_η per mesh (see QuasiStaticMesh).
+///
+/// **Flanks apart.** Where Newton's tangent is singular (a mesh out of contact: zero torque in
+/// the backlash, or a start where no tooth pair touches) the solve restarts with a regularised
+/// continuation (Levenberg–Marquardt: (K_t + λ K_s) dx = r with K_s the mean stiffness with
+/// stand-in mesh springs, λ from 1 down by ×0.1 per successful step to 0, then plain Newton),
+/// which walks the flanks into contact under the load. An equilibrium with no mesh force at all
+/// is accepted as free play (the start kept, K = 0, a warning); no contact found → status
+/// kNotConverged with "flanks apart" in the message (never a NaN).
 /// @throws InvalidInput on invalid options or a model without meshes.
 QuasiStaticResult SimulateQuasiStatic(const SystemModel& model, const QuasiStaticOptions& options,
                                       const TimeProgress& progress = {},
                                       const std::atomic<bool>* cancel = nullptr);
+
+/// @brief What a run at mesh frequency f_m will have to do, estimated before it starts (the
+/// `geardyn simulate` warnings on very low / very high speeds and absurd loads). Added in session
+/// 25 ("qs"); implemented in time_domain/quasi_static.cpp (it needs the static state).
+struct TimeRunEstimate {
+  /// Highest undamped natural frequency of the linear system at the static state at θ₀ (K0 plus
+  /// every mesh's tangent there; power iteration as kAuto's rule) [Hz].
+  double highest_frequency_hz = 0.0;
+  /// Per mesh δ_η at the static state at θ₀ [m] (the static deflection under the load).
+  std::vector<double> static_deflection;
+  /// The fewest periods a run to steady state integrates: the steady test compares consecutive
+  /// periods from max(2, min_periods) on, so max(2, min_periods) + consecutive_periods − 1, plus
+  /// record_periods [-] (each of period_multiple × P mesh cycles).
+  long min_periods = 0;
+  double min_simulated_time_s = 0.0;  ///< min_periods × P × period_multiple / f_m [s]
+  /// Oscillations of the highest mode within min_simulated_time_s [-]: the work of a
+  /// time integration that follows them (its steps grow with this number).
+  double highest_mode_cycles = 0.0;
+  Summary summary;  ///< the static solve's status (values 0 when it failed)
+};
+/// @throws InvalidInput as SimulateSteadyState (f_m, options, model).
+TimeRunEstimate EstimateTimeRun(const SystemModel& model, double mesh_frequency_hz,
+                                const TimeResponseOptions& options);
 
 }  // namespace geardyn
