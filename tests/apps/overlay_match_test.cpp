@@ -53,15 +53,21 @@ TEST(OverlayMatch, KimRigMatchEqualsTheSpurPairClosedForms) {
   const double force = kTorque / g.pinion.base_radius;
   // The contact core's mesh force is T/r_b (static torque balance of the pinion).
   EXPECT_NEAR(m[0].mean_force, force, 1e-3 * force);
-  // Mean contacts = ε_α within the 1/64 sampling of the hand-overs.
-  EXPECT_NEAR(m[0].mean_contacts, eps, 2.0 / 64);
+  // Mean contacts n̄ ≈ ε_α: above it by the entering tooth's tip-corner contact before the
+  // path's start under load (contact_xcheck_test.cpp; ≈ 4 % here), within the 1/64 sampling.
+  EXPECT_GE(m[0].mean_contacts, eps - 1.0 / 64);
+  EXPECT_LE(m[0].mean_contacts, 1.05 * eps + 1.0 / 64);
   const double k_closed = m[0].contact_mean_stiffness / (b * eps);
   EXPECT_NEAR(m[0].stiffness_per_length, k_closed, 0.02 * k_closed);
+  // Kim's damper at the mean contact load F/n̄ summed over n̄ contacts; with n̄ = ε_α the
+  // kim_qfb_sweeps.py value, larger by (n̄/ε_α)^{1 − m3/m1} ≈ 3 % here.
   const ContactLaw law = KimContactLaw();
-  const double c_closed =
-      eps * law.damping *
-      std::pow(force / (eps * law.stiffness), law.indentation_exponent / law.stiffness_exponent);
-  EXPECT_NEAR(m[0].damping, c_closed, 0.03 * c_closed);
+  const auto c_closed = [&](double n) {
+    return n * law.damping *
+           std::pow(force / (n * law.stiffness), law.indentation_exponent / law.stiffness_exponent);
+  };
+  EXPECT_NEAR(m[0].damping, c_closed(m[0].mean_contacts), 1e-3 * c_closed(m[0].mean_contacts));
+  EXPECT_NEAR(m[0].damping, c_closed(eps), 0.05 * c_closed(eps));
   // An independent roll of the matched slice model: the contact model's mean stiffness.
   const double ks = MeanStiffness(Build(MatchedSliceOverrides(m)));
   EXPECT_NEAR(ks, m[0].contact_mean_stiffness, 5e-3 * m[0].contact_mean_stiffness);

@@ -71,7 +71,9 @@ TEST(SimulateChecks, TorqueBeyondTheTeethsScaleIsFlaggedWithItsDeflection) {
   const std::string w = Find(r["warnings"], "deflects");
   ASSERT_FALSE(w.empty()) << r["warnings"].dump();
   EXPECT_NE(w.find("1e+07 N·m: mesh pinion-wheel"), std::string::npos) << w;
-  const SystemModel model = MakeSystemModel(LoadScene(kRig));
+  // The model at 1e7 N·m (ISO's stiffness depends on the line load).
+  const SystemModel model =
+      MakeSystemModel(LoadScene(kRig, {"operating_point.torque=1e7", "load.brake.torque=1e7"}));
   const auto& core = std::get<LinearMeshCore>(model.meshes()[0].core);
   const double rb = 0.070477;  // base radius [m] (docs/design.md, rig geometry)
   const double expected = 1e7 / rb / EvalStiffnessCore(core, 0.0)(0, 0);
@@ -79,7 +81,9 @@ TEST(SimulateChecks, TorqueBeyondTheTeethsScaleIsFlaggedWithItsDeflection) {
 }
 
 // A contact mesh with backlash (centre distance +0.2 mm) at zero torque: every position in the
-// backlash is an equilibrium; the export succeeds with K = 0 and says "free play".
+// backlash is an equilibrium; the export succeeds and says "free play". The mesh force is 0 and
+// K is 0 up to the round-off touch of the flanks at the rest position (Hertz tangent at
+// δ ≈ 1e-17 m: < 1e-5 of the loaded K̄ ≈ 2.9e9 N/m).
 TEST(SimulateChecks, QuasiStaticOfAContactMeshInFreePlay) {
   const nlohmann::json r = Report(
       {"simulate", kRig, "--quasi-static", "--samples-per-period", "8", "--torque", "0", "--set",
@@ -88,8 +92,9 @@ TEST(SimulateChecks, QuasiStaticOfAContactMeshInFreePlay) {
   ASSERT_EQ(r["status"], "success");
   const auto& run = r["runs"][0];
   EXPECT_FALSE(Find(run["warnings"], "free play").empty()) << run["warnings"].dump();
-  for (const auto& k : run["meshes"][0]["stiffness_n_per_m"]) EXPECT_EQ(k.get<double>(), 0.0);
-  for (const auto& f : run["meshes"][0]["force_n"]) EXPECT_EQ(f.get<double>(), 0.0);
+  ASSERT_EQ(run["meshes"][0]["stiffness_n_per_m"].size(), 8u);
+  for (const auto& k : run["meshes"][0]["stiffness_n_per_m"]) EXPECT_LT(k.get<double>(), 3e4);
+  for (const auto& f : run["meshes"][0]["force_n"]) EXPECT_LT(std::abs(f.get<double>()), 1e-9);
 }
 
 }  // namespace
