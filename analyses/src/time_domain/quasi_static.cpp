@@ -16,6 +16,7 @@
 #include "geardyn/common/check.hpp"
 #include "geardyn/common/errors.hpp"
 #include "geardyn/system/probes.hpp"
+#include "static_continuation.hpp"
 #include "td_system.hpp"
 
 namespace geardyn {
@@ -98,6 +99,7 @@ struct StaticSolve {
   bool ok = false;
   bool regularised = false;  ///< SolveStatic failed; the continuation found the equilibrium
   bool free_play = false;    ///< equilibrium at a singular tangent (no mesh load)
+  int iterations = 0;        ///< Newton's, then the continuation's
   std::string message;
 };
 
@@ -129,6 +131,7 @@ StaticSolve RegularisedStatic(const internal::TdSystem& sys, internal::TdWorkspa
   MatrixX kt = ws.tangent_k;
   int stalled = 0;  // accepted near-Newton steps that did not reduce the residual
   for (int it = 0; it < kRegularisedIterations && stalled < kStalledSteps; ++it) {
+    out.iterations = it + 1;
     const double r_norm = r.norm();
     if (r.lpNorm<Eigen::Infinity>() <= kFreePlayResidual * load_scale) {
       // Equilibrium already (zero load, or a free-play position): nothing to move.
@@ -185,6 +188,7 @@ StaticSolve SolveQuasiStatic(const internal::TdSystem& sys, internal::TdWorkspac
     StaticSolve out;
     out.x = st.x;
     out.ok = true;
+    out.iterations = st.iterations;
     return out;
   }
   const VectorX x0 = start != nullptr ? *start : VectorX::Zero(sys.n);
@@ -194,6 +198,7 @@ StaticSolve SolveQuasiStatic(const internal::TdSystem& sys, internal::TdWorkspac
     if (cold.ok) out = std::move(cold);
   }
   if (!out.ok && out.message.empty()) out.message = st.message;
+  out.iterations += st.iterations;
   return out;
 }
 
@@ -271,6 +276,21 @@ bool MeshInFreePlay(const internal::TdSystem& sys, const internal::TdWorkspace& 
 }
 
 }  // namespace
+
+namespace internal {
+
+TdStatic SolveStaticWithContinuation(const TdSystem& sys, TdWorkspace& ws, double theta0,
+                                     const VectorX* start) {
+  const StaticSolve st = SolveQuasiStatic(sys, ws, theta0, start);
+  TdStatic out;
+  out.x = st.ok ? st.x : VectorX::Zero(sys.n);
+  out.ok = st.ok;
+  out.iterations = st.iterations;
+  out.message = st.message;
+  return out;
+}
+
+}  // namespace internal
 
 bool QuasiStaticOptions::IsValid(std::string* why) const {
   std::ostringstream s;

@@ -19,6 +19,7 @@
 #include "geardyn/common/check.hpp"
 #include "geardyn/common/errors.hpp"
 #include "geardyn/system/probes.hpp"
+#include "static_continuation.hpp"
 #include "td_steppers.hpp"
 #include "td_system.hpp"
 
@@ -156,7 +157,7 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
   VectorX x0(n), v0 = VectorX::Zero(n);
   VectorX reference;
   if (options.start_from_static) {
-    const internal::TdStatic st = internal::SolveStatic(sys, ws, theta0);
+    const internal::TdStatic st = internal::SolveStaticWithContinuation(sys, ws, theta0);
     if (!st.ok) {
       summary.status = Status::kNumericalIssue;
       summary.message = st.message;
@@ -651,7 +652,7 @@ TimeDomainStatic SolveTimeDomainStatic(const SystemModel& model, double theta0) 
   CheckModel(model, "SolveTimeDomainStatic");
   const TdSystem sys(model);
   TdWorkspace ws(sys);
-  const internal::TdStatic st = internal::SolveStatic(sys, ws, theta0);
+  const internal::TdStatic st = internal::SolveStaticWithContinuation(sys, ws, theta0);
   TimeDomainStatic out;
   out.state = st.x;
   out.iterations = st.iterations;
