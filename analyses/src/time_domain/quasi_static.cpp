@@ -183,7 +183,13 @@ StaticSolve RegularisedStatic(const internal::TdSystem& sys, internal::TdWorkspa
 /// regularised continuation from the same start.
 StaticSolve SolveQuasiStatic(const internal::TdSystem& sys, internal::TdWorkspace& ws, double theta,
                              const VectorX* start) {
-  const internal::TdStatic st = internal::SolveStatic(sys, ws, theta, start);
+  internal::TdStatic st = internal::SolveStatic(sys, ws, theta, start);
+  if (!(st.ok && st.x.allFinite()) && start != nullptr) {
+    // The warm start can stall where a cold one converges (tooth bodies: Newton with the
+    // contact Jacobian that omits f ∂²δ/∂x² creeps from a neighbouring sample's state).
+    const internal::TdStatic cold = internal::SolveStatic(sys, ws, theta, nullptr);
+    if (cold.ok && cold.x.allFinite()) st = cold;
+  }
   if (st.ok && st.x.allFinite()) {
     StaticSolve out;
     out.x = st.x;
