@@ -37,7 +37,9 @@
 /// generalized-α (its numerical damping included for ρ∞ < 1); a summary warning above 1e-4.
 ///
 /// **Quasi-static run** (SimulateQuasiStatic): the static equilibrium at every θ sample with the
-/// loaded static TE and the tangent mesh stiffness (K, K·h, K·μ·b²) per mesh.
+/// loaded static TE, the tangent mesh stiffness (K, K·h, K·μ·b²), the mesh force pair and the LTV
+/// transmission error per mesh — what `[mesh.parameters]` needs — sampled on the system phase or
+/// on each mesh's own cycle, with a continuation where the flanks start apart.
 ///
 /// **Results.** Every run returns what it computed so far even when it fails or is cancelled
 /// (Summary status + message; the library never prints). No verdict (steady) without a clean
@@ -309,7 +311,7 @@ struct QuasiStaticMesh {
   std::string name;
   VectorX loaded_te;  ///< (samples) δ_η at the static equilibrium: the loaded static TE [m]
   VectorX dte;        ///< (samples) δ_η − ε_η (probes.hpp) [m]
-  VectorX force;      ///< (samples) F_η [N] (0 for a NonlinearMeshCore)
+  VectorX force;      ///< (samples) F_η [N] (a NonlinearMeshCore: row 0 of force_pair)
   /// (3 × samples) tangent mesh stiffness channels (K, K·h, K·μ·b²) [N/m, N, N·m] with
   /// K2 = [[K, −K·h], [−K·h, K·μ·b²]] = ∂F/∂δ (mesh_core.hpp), for a NonlinearMeshCore its
   /// internal coordinates condensed out and K2 = G⁺ᵀ K₁₂ G⁺ (G⁺ the pseudo-inverse of G) —
