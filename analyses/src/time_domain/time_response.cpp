@@ -20,6 +20,7 @@
 #include "geardyn/common/errors.hpp"
 #include "geardyn/system/probes.hpp"
 #include "td_steppers.hpp"
+#include "td_symmetry.hpp"
 #include "td_system.hpp"
 
 namespace geardyn {
@@ -188,7 +189,18 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
       internal::MakeStepper(method, sys, io, MakeScales(reference, omega), omega, theta0);
   stepper->Reset(0.0, x0, v0);
 
-  const std::int64_t P = model.period_meshes() * so.period_multiple;
+  // The period of the steady test: P_S mesh cycles, over which the steady state repeats up to
+  // the cores' relabelling S of their internal coordinates (td_symmetry.hpp).
+  const internal::TdSymmetry symmetry = internal::MakeTdSymmetry(sys, so.use_symmetry);
+  const std::int64_t P = symmetry.period_meshes * so.period_multiple;
+  out.period_meshes = P;
+  if (symmetry.any_shift()) summary.counters["symmetry_shift"] = 1;
+  // S x: the state a steady response has one period after x (rigid projection commutes with S:
+  // S keeps M and the rigid modes, which do not move the tooth coordinates).
+  const auto shifted = [&](VectorX y) -> VectorX {
+    internal::ApplyTdSymmetry(sys, symmetry, so.period_multiple, y);
+    return y;
+  };
   const double period = mesh_period * static_cast<double>(P);
   const long samples = static_cast<long>(io.samples_per_period) * P;
   // Every size has a bound (architecture §3.7): the recorded histories.
@@ -206,7 +218,8 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
     if (sys.rigid_modes.cols() == 0) return y;
     return y - sys.rigid_modes * (vmv_inv * (mv.transpose() * y));
   };
-  VectorX prev_x = rigid_projector(x0), prev_v = rigid_projector(v0);
+  // The expected state at the next period start if the response were steady: S × this one.
+  VectorX prev_x = shifted(rigid_projector(x0)), prev_v = shifted(rigid_projector(v0));
   int consecutive = 0;
   std::vector<double> first_level(static_cast<std::size_t>(num_meshes), 0.0);
   int grown = -1;
@@ -373,8 +386,8 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
       failed = true;
       break;
     }
-    prev_x = x;
-    prev_v = v;
+    prev_x = shifted(x);
+    prev_v = shifted(v);
     consecutive = (p + 1 >= so.min_periods && change < so.tolerance) ? consecutive + 1 : 0;
     if (progress) {
       progress(static_cast<double>(p + 1) / so.max_periods,
