@@ -71,6 +71,7 @@ struct SimulateOptions {
   double max_step = TimeIntegrationOptions{}.max_step_fraction;
   int threads = 0;
   bool quasi_static = false;
+  bool full_period = false;  // --full-period: no symmetry shift in the steady test
   bool overlay_hb = false;
   bool progress = false;
 };
@@ -175,6 +176,7 @@ TimeResponseOptions MakeResponseOptions(const SimulateOptions& o) {
   r.steady.max_periods = o.max_periods;
   r.steady.min_periods = std::min(r.steady.min_periods, o.max_periods);
   r.steady.record_periods = o.record_periods;
+  r.steady.use_symmetry = !o.full_period;
   std::string why;
   GEARDYN_THROW_UNLESS(r.IsValid(&why), why);
   return r;
@@ -652,6 +654,9 @@ Command AddSimulateCommand(CLI::App& app) {
                   "3000; reached: status not_converged, exit 1, files kept)");
   cmd->add_option("--record-periods", opts->record_periods,
                   "periods recorded after steady state, in [1, 1000] (default 1)");
+  cmd->add_flag("--full-period", opts->full_period,
+                "steady test over the model's full period (identical tooth bodies: lcm(z1, z2) "
+                "mesh cycles) instead of the symmetry period with the tooth shift (1 cycle)");
   cmd->add_option("--samples-per-period", opts->samples_per_period,
                   "output samples per mesh period, in [4, 65536] (default 64); --quasi-static: "
                   "the mesh phases of the table, at most 4096");

@@ -134,6 +134,7 @@ json MakeSimulateReport(const SimulateRunInfo& info, const std::vector<std::stri
         {"steps", single->steps},
         {"events", single->events},
         {"periods", single->periods},
+        {"period_meshes", single->period_meshes},
         {"steady", ToString(single->steady)},
         {"max_energy_error",
          single->energy.empty() ? json(nullptr) : JsonNumber(single->max_energy_error)},

@@ -66,7 +66,7 @@ struct HbOverlay {
 /// "interrupted", "warnings", "meshes" (names), "points": [{torque_nm, branch, mesh_frequency_hz,
 /// status, message, steady, periods, max_energy_error, integrator, steps, events, meshes: [{name,
 /// rms_dte_m, peak_to_peak_dte_m, mean_dte_m, contact_loss_fraction}]}], "wall_time_s"; with
-/// `single` (one run) also "run": {integrator, steps, events, periods, steady,
+/// `single` (one run) also "run": {integrator, steps, events, periods, period_meshes, steady,
 /// max_energy_error, summary: {status, message, error_estimate, wall_time_s, counters,
 /// warnings}}; "summaries": the library's Summary of each run set (a sweep, an independent run),
 /// [{torque_nm, status, message, error_estimate, wall_time_s, counters}].

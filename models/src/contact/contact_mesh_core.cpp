@@ -134,6 +134,16 @@ int ContactMeshCore::ToothOffset(int member, int tooth) const {
   return 12 + (member == 0 ? 0 : teeth_[0].num_coordinates()) + tooth * dofs_[member];
 }
 
+void ContactMeshCore::ApplySymmetryShift(Eigen::Ref<VectorX> internal) const {
+  double* block = internal.data();
+  for (int k = 0; k < 2; ++k) {
+    const int size = teeth_[k].num_coordinates();
+    // Tooth z−1's coordinates go to tooth 0, every other tooth's to the next one.
+    if (size > 0) std::rotate(block, block + size - dofs_[k], block + size);
+    block += size;
+  }
+}
+
 std::unique_ptr<NonlinearMeshCoreWorkspace> ContactMeshCore::MakeWorkspace() const {
   auto ws = std::make_unique<ContactWorkspace>();
   ws->candidates.resize(static_cast<std::size_t>(teeth_[0].teeth) * teeth_[1].teeth);

@@ -8,7 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <numeric>
 #include <random>
 #include <utility>
 #include <vector>
@@ -397,6 +399,67 @@ TEST(ContactMeshCoreTest, UnsupportedOptionsAreRefused) {
   def.arcs = 0;
   EXPECT_THROWS_MESSAGE(ContactMeshCore(spur.pair, spur.frame, def), InvalidInput,
                         "def.arcs: 0 must lie in");
+}
+
+// Tooth-shift symmetry (symmetry_period_meshes, ApplySymmetryShift): the teeth of a member are
+// identical, and in mesh cycle n pinion tooth n mod z1 meets gear tooth n mod z2 (mesh_kinematics
+// numbering), so one mesh cycle later tooth k + 1 stands where tooth k stood. Truth: the
+// equivariance f(S x, S v, θ + 2π) = S f(x, v, θ) (body forces, energy, powers unchanged), with S
+// built here by hand ((S y)_{k+1} = y_k per member), at loaded random states of the Kim pair and
+// of an unequal pair (z 23/41: two different cycles).
+TEST(ContactMeshCoreTest, ToothShiftOfOneMeshCycleIsASymmetry) {
+  for (const GearPairSpec& spec : {KimRigPair(), test::UnequalSpurPair()}) {
+    const auto setup = MakeContactPair(spec);
+    for (const ToothBodyType type : {ToothBodyType::kRevolute, ToothBodyType::kBushing}) {
+      ContactMeshDef def = RevoluteDef();
+      def.teeth = type;
+      const ContactMeshCore core(setup.pair, setup.frame, def);
+      EXPECT_EQ(core.symmetry_period_meshes(), 1);
+      EXPECT_EQ(core.period_meshes(), std::lcm<std::int64_t>(spec.pinion.teeth, spec.gear.teeth));
+      const int d = ToothDofs(type);
+      const int z[2] = {spec.pinion.teeth, spec.gear.teeth};
+      const auto by_hand = [&](const VectorX& y) {
+        VectorX s = y;
+        int first = 12;
+        for (int m = 0; m < 2; ++m) {
+          for (int k = 0; k < z[m]; ++k) {
+            s.segment(first + ((k + 1) % z[m]) * d, d) = y.segment(first + k * d, d);
+          }
+          first += z[m] * d;
+        }
+        return s;
+      };
+      auto ws = core.MakeWorkspace();
+      for (unsigned seed = 1; seed <= 3; ++seed) {
+        const State s = LoadedState(core, seed, 2e-6);
+        State t = s;
+        t.x = by_hand(s.x);
+        t.v = by_hand(s.v);
+        VectorX lib_x = s.x;  // the core's own shift agrees with the hand-made S
+        auto internal = lib_x.tail(core.num_internal_coordinates());
+        core.ApplySymmetryShift(internal);
+        EXPECT_EQ(lib_x, t.x);
+        t.theta = s.theta + 2.0 * std::acos(-1.0);
+        const NonlinearMeshCoreOutput a = Eval(core, *ws, s, true);
+        const NonlinearMeshCoreOutput b = Eval(core, *ws, t, true);
+        ASSERT_GT(a.num_contacts, 0);
+        EXPECT_EQ(a.num_contacts, b.num_contacts);
+        const double f = a.force.lpNorm<Eigen::Infinity>();
+        EXPECT_LT((b.force - by_hand(a.force)).lpNorm<Eigen::Infinity>(), 1e-9 * f)
+            << ToString(type) << " z " << z[0] << "/" << z[1] << " seed " << seed;
+        EXPECT_NEAR(b.energy, a.energy, 1e-9 * std::abs(a.energy));
+        EXPECT_NEAR(b.dissipation_power, a.dissipation_power, 1e-9 * a.dissipation_power);
+        EXPECT_NEAR(b.phase_power, a.phase_power, 1e-9 * std::abs(a.phase_power) + 1e-12);
+        // The tangent too: K(S x) = S K(x) Sᵀ, i.e. row/column permuted.
+        MatrixX k = a.stiffness;
+        for (Eigen::Index c = 0; c < k.cols(); ++c) k.col(c) = by_hand(k.col(c));
+        for (Eigen::Index r = 0; r < k.rows(); ++r)
+          k.row(r) = by_hand(k.row(r).transpose()).transpose();
+        EXPECT_LT((b.stiffness - k).lpNorm<Eigen::Infinity>(),
+                  1e-9 * a.stiffness.lpNorm<Eigen::Infinity>());
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -50,6 +50,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <string>
@@ -119,6 +120,14 @@ struct TimeIntegrationOptions {
 /// DTE RMS of every mesh (relative to max(RMS, 1e-6·|mean DTE|)) is below `tolerance`. A
 /// response whose max |DTE| grows beyond 1e4 × its first period's ends the run (kNotConverged,
 /// "grows without bound").
+///
+/// **Period** (TimeResponse::period_meshes): period_multiple × P_S mesh cycles. P_S is the
+/// symmetry period of the cores (NonlinearMeshCore::symmetry_period_meshes; with identical tooth
+/// bodies 1 instead of the hunting period lcm(z1, z2)) and Δx = x(end) − S x(start) with S the
+/// cores' relabelling of their internal coordinates over the period (tooth k → k + 1): the steady
+/// response satisfies x(t + T) = S x(t). Several meshes: P_S is the smallest multiple of the
+/// cores' symmetry periods that is a whole number of each mesh's own (phase ratios r_k), below
+/// the model's period P; otherwise (or with use_symmetry false) P with S the identity.
 struct SteadyStateOptions {
   double tolerance = 1e-6;      ///< relative period-to-period change [-], in [1e-14, 1]
   int consecutive_periods = 3;  ///< k, in [1, 1000]
@@ -128,6 +137,8 @@ struct SteadyStateOptions {
   /// (2 for a period-doubled response).
   int period_multiple = 1;
   int record_periods = 1;  ///< periods recorded after steady state, in [1, 1000]
+  /// Use the cores' symmetry (period P_S with the shift S); false: the full period P, S = I.
+  bool use_symmetry = true;
   /// False (with the field, value and bound in `why`) on an invalid value.
   bool IsValid(std::string* why) const;
 };
@@ -177,6 +188,12 @@ struct TimeResponse {
   std::vector<EnergyBalancePeriod> energy;  ///< one per integrated period (transient included)
   double max_energy_error = 0.0;            ///< max relative_error over `energy` [-]
   int periods = 0;                          ///< periods integrated before recording
+  /// Mesh cycles per period (steady test, energy balance, recording): period_multiple × P_S
+  /// (SteadyStateOptions). With identical tooth bodies 1: the recorded mesh cycle shows each
+  /// tooth channel once, at that tooth's place in the cycle; tooth k's history over the full
+  /// hunting period is the recorded cycle's history of tooth k − n at cycle n (the steady
+  /// response repeats with the shift S).
+  std::int64_t period_meshes = 0;
   SteadyVerdict steady = SteadyVerdict::kUndetermined;
   long steps = 0;   ///< accepted steps
   long events = 0;  ///< located switching events

@@ -446,6 +446,21 @@ class NonlinearMeshCore {
   virtual int num_internal_coordinates() const { return 0; }
   /// P: the core's forces are periodic in θ with period 2π·P (1 unless teeth differ).
   virtual std::int64_t period_meshes() const { return 1; }
+  /// @brief P_S: the symmetry period [mesh cycles], a divisor of period_meshes(). The core's
+  /// equations are equivariant under advancing θ by 2π·P_S together with the relabelling S of
+  /// the internal coordinates (ApplySymmetryShift): f(S x, S v, θ + 2π P_S) = S f(x, v, θ) on
+  /// the internal block, the 12 body forces unchanged, and S keeps InternalMass() (Sᵀ M S = M).
+  /// A steady periodic response then satisfies x_int(θ + 2π P_S) = S x_int(θ), so a steady-state
+  /// test may compare the state after P_S mesh cycles with the shifted state before them instead
+  /// of waiting for the full period P (e.g. identical tooth bodies: P = lcm(z1, z2), P_S = 1, S
+  /// "tooth k → k + 1"). Default: P_S = P with S the identity (no symmetry claimed).
+  virtual std::int64_t symmetry_period_meshes() const { return period_meshes(); }
+  /// @brief Applies S of one symmetry period in place to the internal coordinates (or their
+  /// rates) y = x_int (num_internal_coordinates()): y ← S y, where S maps the state at θ to the
+  /// state the steady response has at θ + 2π·P_S. S must be a permutation of the coordinates (an
+  /// orthogonal map; applied count times for count symmetry periods). Identity by default.
+  /// No allocation.
+  virtual void ApplySymmetryShift(Eigen::Ref<VectorX> internal) const { (void)internal; }
   /// A fresh per-thread workspace.
   virtual std::unique_ptr<NonlinearMeshCoreWorkspace> MakeWorkspace() const = 0;
   /// @brief The mass the core adds on its coordinates x (n×n, symmetric) [kg, kg·m, kg·m²]: the

@@ -81,6 +81,14 @@ class ContactMeshCore final : public NonlinearMeshCore {
   int num_coordinates() const override { return 12 + num_internal_; }
   int num_internal_coordinates() const override { return num_internal_; }
   std::int64_t period_meshes() const override { return period_; }
+  /// 1: the teeth of a member are identical (tooth errors are refused with model = "contact"),
+  /// so one mesh cycle later tooth k + 1 of each member plays the role tooth k had
+  /// (mesh_kinematics.hpp numbering: in mesh cycle n pinion tooth n mod z1 meets gear tooth
+  /// n mod z2). Rigid teeth: P = 1 and nothing to shift.
+  std::int64_t symmetry_period_meshes() const override { return 1; }
+  /// S of one mesh cycle: per member, the coordinates of tooth k move to tooth k + 1 (mod z),
+  /// i.e. (S y)_{k+1} = y_k — the steady response has x_{k+1}(θ + 2π) = x_k(θ).
+  void ApplySymmetryShift(Eigen::Ref<VectorX> internal) const override;
   std::unique_ptr<NonlinearMeshCoreWorkspace> MakeWorkspace() const override;
   MatrixX InternalMass() const override;
   int num_switching_functions() const override;
