@@ -5,7 +5,9 @@
 /// the step ends.
 #include <Eigen/LU>
 #include <Eigen/SparseLU>
+#include <algorithm>
 #include <limits>
+#include <vector>
 
 #include "td_steppers.hpp"
 
@@ -24,6 +26,11 @@ class AlphaStepper final : public TdStepper {
     gamma_ = 0.5 - alpha_m_ + alpha_f_;
     beta_ = 0.25 * (1.0 - alpha_m_ + alpha_f_) * (1.0 - alpha_m_ + alpha_f_);
     a_ = trial_a_ = VectorX::Zero(sys.n);
+    // Large systems: the iteration matrix is sparse (bodies couple through elements and meshes,
+    // teeth through their trunk and their contacts); assembled from triplets, factored by
+    // SparseLU with the pattern analysis reused while the contact pattern stays the same.
+    sparse_ = sys.n >= options.sparse_threshold;
+    ws_.sparse_tangents = sparse_;
   }
 
  protected:
@@ -31,7 +38,7 @@ class AlphaStepper final : public TdStepper {
 
   void OnReset() override {
     // Consistent initial acceleration a = M⁻¹ force(x, v, t) and the end-point powers.
-    a_ = sys_.mass_ldlt->solve(ws_.force);
+    sys_.mass_solver->Solve(ws_.force, &a_);
     power_ = ws_.mesh_phase_power;
     dissipation_ = DissipationPower(sys_, ws_, v_);
   }
@@ -51,21 +58,16 @@ class AlphaStepper final : public TdStepper {
       const VectorX x_alpha = (1.0 - alpha_f_) * trial_x_ + alpha_f_ * x_;
       const VectorX v_alpha = (1.0 - alpha_f_) * trial_v_ + alpha_f_ * v_;
       Eval(t_alpha, x_alpha, v_alpha, true);
-      const VectorX residual = sys_.mass * ((1.0 - alpha_m_) * a1 + alpha_m_ * a_) - ws_.force;
+      const VectorX residual =
+          sys_.mass_sparse * ((1.0 - alpha_m_) * a1 + alpha_m_ * a_) - ws_.force;
       if (!residual.allFinite()) return kInf;
-      const MatrixX jac =
-          (1.0 - alpha_m_) * sys_.mass +
-          (1.0 - alpha_f_) * (beta_ * h * h * ws_.tangent_k + gamma_ * h * ws_.tangent_c);
+      const double ck = (1.0 - alpha_f_) * beta_ * h * h, cc = (1.0 - alpha_f_) * gamma_ * h;
       VectorX da;
-      if (sys_.n >= options_.sparse_threshold) {
-        // Large systems: the iteration matrix is sparse (bodies couple through elements and
-        // meshes only); SparseLU instead of the O(n³) dense LU.
-        const SparseMatrix sparse = jac.sparseView();
-        Eigen::SparseLU<SparseMatrix> lu;
-        lu.compute(sparse);
-        if (lu.info() != Eigen::Success) return kInf;
-        da = lu.solve(residual);
+      if (sparse_) {
+        if (!FactorSparse(ck, cc)) return kInf;
+        da = lu_.solve(residual);
       } else {
+        const MatrixX jac = (1.0 - alpha_m_) * sys_.mass + ck * ws_.tangent_k + cc * ws_.tangent_c;
         const Eigen::PartialPivLU<MatrixX> lu(jac);
         da = lu.solve(residual);
       }
@@ -116,6 +118,39 @@ class AlphaStepper final : public TdStepper {
   }
 
  private:
+  /// J = (1 − α_m) M + ck K_t + cc C_t from the triplets of the last evaluation, factored into
+  /// lu_ (symbolic analysis only when the nonzero pattern changed). False when singular.
+  bool FactorSparse(double ck, double cc) {
+    triplets_.clear();
+    AppendTriplets(sys_.mass_sparse, 1.0 - alpha_m_, &triplets_);
+    for (const auto& e : ws_.tangent_k_triplets)
+      triplets_.emplace_back(e.row(), e.col(), ck * e.value());
+    for (const auto& e : ws_.tangent_c_triplets)
+      triplets_.emplace_back(e.row(), e.col(), cc * e.value());
+    jac_.resize(sys_.n, sys_.n);
+    jac_.setFromTriplets(triplets_.begin(), triplets_.end());
+    jac_.makeCompressed();
+    const auto nnz = static_cast<std::size_t>(jac_.nonZeros());
+    const bool same = analyzed_ && outer_.size() == static_cast<std::size_t>(sys_.n) + 1 &&
+                      inner_.size() == nnz &&
+                      std::equal(outer_.begin(), outer_.end(), jac_.outerIndexPtr()) &&
+                      std::equal(inner_.begin(), inner_.end(), jac_.innerIndexPtr());
+    if (!same) {
+      lu_.analyzePattern(jac_);
+      outer_.assign(jac_.outerIndexPtr(), jac_.outerIndexPtr() + sys_.n + 1);
+      inner_.assign(jac_.innerIndexPtr(), jac_.innerIndexPtr() + nnz);
+      analyzed_ = true;
+    }
+    lu_.factorize(jac_);
+    return lu_.info() == Eigen::Success;
+  }
+
+  bool sparse_ = false;
+  std::vector<Eigen::Triplet<double>> triplets_;
+  SparseMatrix jac_;
+  Eigen::SparseLU<SparseMatrix> lu_;
+  bool analyzed_ = false;
+  std::vector<int> outer_, inner_;  // pattern of the last symbolic analysis
   double alpha_m_ = 0.0, alpha_f_ = 0.0, gamma_ = 0.5, beta_ = 0.25;
   VectorX a_, trial_a_;
   double power_ = 0.0, dissipation_ = 0.0, trial_power_ = 0.0, trial_dissipation_ = 0.0;

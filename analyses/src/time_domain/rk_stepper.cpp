@@ -66,7 +66,7 @@ class RkStepper final : public TdStepper {
     Eigen::Map<const VectorX> x(y, n), v(y + n, n);
     self->Eval(t, x, v, false);
     if (!self->ws_.force.allFinite()) return GSL_EBADFUNC;
-    self->acc_ = self->sys_.mass_ldlt->solve(self->ws_.force);
+    self->sys_.mass_solver->Solve(self->ws_.force, &self->acc_);
     Eigen::Map<VectorX>(dydt, n) = v;
     Eigen::Map<VectorX>(dydt + n, n) = self->acc_;
     dydt[2 * n] = self->ws_.mesh_phase_power;

@@ -94,6 +94,13 @@ double LinearEnergy(const LinearMeshCore& core, double theta_k, double theta_e,
 
 }  // namespace
 
+void AppendTriplets(const SparseMatrixRowMajor& a, double scale,
+                    std::vector<Eigen::Triplet<double>>* out) {
+  for (int i = 0; i < a.outerSize(); ++i)
+    for (SparseMatrixRowMajor::InnerIterator it(a, i); it; ++it)
+      out->emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), scale * it.value());
+}
+
 TdSystem::TdSystem(const SystemModel& m) : model(m) {
   num_dofs = model.num_dofs();
   // Internal coordinates of the nonlinear cores, appended mesh by mesh.
@@ -197,6 +204,11 @@ TdSystem::TdSystem(const SystemModel& m) : model(m) {
       "time integration: the mass matrix (system mass plus the cores' "
       "InternalMass) is not positive definite");
   mass_ldlt = ldlt;
+  mass_solver = std::make_shared<const MassSolver>(mass, num_dofs);
+  GEARDYN_THROW_UNLESS(mass_solver->ok(),
+                       "time integration: the mass matrix (system mass plus the cores' "
+                       "InternalMass) is not positive definite (block factorization)");
+  mass_sparse = mass.sparseView(0.0, 0.0);
 
   // Rigid-body modes of the mean system stiffness: K0 + the mean linear/slice mesh terms +, for
   // every NonlinearMeshCore, a stand-in mesh spring Gᵀ diag(k_v, k_v·(1 cm)²) G on its mesh
@@ -234,6 +246,8 @@ TdSystem::TdSystem(const SystemModel& m) : model(m) {
     unbalanced_fraction = rigid.UnbalancedFraction(f0);
     load0 -= mv * coef;
   }
+  stiffness0_sparse = stiffness0.sparseView(0.0, 0.0);
+  damping0_sparse = damping0.sparseView(0.0, 0.0);
 }
 
 bool TdSystem::has_nonlinear() const {
@@ -308,8 +322,18 @@ TdWorkspace::TdWorkspace(const TdSystem& sys) {
 void EvalForces(const TdSystem& sys, TdWorkspace& ws, double theta, double theta_rate,
                 const Eigen::Ref<const VectorX>& x, const Eigen::Ref<const VectorX>& v,
                 bool with_jacobians) {
-  ws.force.noalias() = sys.load0 - sys.stiffness0 * x - sys.damping0 * v;
-  if (with_jacobians) {
+  ws.force = sys.load0;
+  ws.force.noalias() -= sys.stiffness0_sparse * x;
+  ws.force.noalias() -= sys.damping0_sparse * v;
+  const bool sparse = with_jacobians && ws.sparse_tangents;
+  auto& kt = ws.tangent_k_triplets;
+  auto& ct = ws.tangent_c_triplets;
+  if (sparse) {
+    kt.clear();
+    ct.clear();
+    AppendTriplets(sys.stiffness0_sparse, 1.0, &kt);
+    AppendTriplets(sys.damping0_sparse, 1.0, &ct);
+  } else if (with_jacobians) {
     ws.tangent_k = sys.stiffness0;
     ws.tangent_c = sys.damping0;
   }
@@ -330,19 +354,40 @@ void EvalForces(const TdSystem& sys, TdWorkspace& ws, double theta, double theta
       xk.tail(t.num_internal) = x.segment(t.internal_offset, t.num_internal);
       vk.tail(t.num_internal) = v.segment(t.internal_offset, t.num_internal);
       NonlinearMeshCoreOutput& out = ws.core_out[k];
+      out.want_triplets = sparse;
       t.nonlinear->CalcForces(*ws.core_ws[k], th, th_rate, xk, vk, with_jacobians, &out);
       const int nc = static_cast<int>(xk.size());
       auto index = [&](int a) { return a < 12 ? t.dofs[a] : t.internal_offset + a - 12; };
       for (int a = 0; a < nc; ++a) {
         const int ia = index(a);
-        if (ia < 0) continue;
-        ws.force(ia) += out.force(a);
-        if (!with_jacobians) continue;
-        for (int b = 0; b < nc; ++b) {
-          const int ib = index(b);
-          if (ib < 0) continue;
-          ws.tangent_k(ia, ib) += out.stiffness(a, b);
-          ws.tangent_c(ia, ib) += out.damping(a, b);
+        if (ia >= 0) ws.force(ia) += out.force(a);
+      }
+      if (sparse && out.has_triplets) {
+        // The core's own sparse Jacobians, mapped to the system's coordinates.
+        for (const auto& e : out.stiffness_triplets) {
+          const int ia = index(e.row()), ib = index(e.col());
+          if (ia >= 0 && ib >= 0) kt.emplace_back(ia, ib, e.value());
+        }
+        for (const auto& e : out.damping_triplets) {
+          const int ia = index(e.row()), ib = index(e.col());
+          if (ia >= 0 && ib >= 0) ct.emplace_back(ia, ib, e.value());
+        }
+      } else if (with_jacobians) {
+        for (int a = 0; a < nc; ++a) {
+          const int ia = index(a);
+          if (ia < 0) continue;
+          for (int b = 0; b < nc; ++b) {
+            const int ib = index(b);
+            if (ib < 0) continue;
+            const double kab = out.stiffness(a, b), cab = out.damping(a, b);
+            if (!sparse) {
+              ws.tangent_k(ia, ib) += kab;
+              ws.tangent_c(ia, ib) += cab;
+            } else {  // a dense-only core: its nonzeros
+              if (kab != 0.0) kt.emplace_back(ia, ib, kab);
+              if (cab != 0.0) ct.emplace_back(ia, ib, cab);
+            }
+          }
         }
       }
       ws.mesh_energy += out.energy;
@@ -460,8 +505,13 @@ void EvalForces(const TdSystem& sys, TdWorkspace& ws, double theta, double theta
       for (int b = 0; b < 12; ++b) {
         const int ib = t.dofs[b];
         if (ib < 0) continue;
-        ws.tangent_k(ia, ib) += kp(a, b);
-        ws.tangent_c(ia, ib) += cp(a, b);
+        if (sparse) {
+          kt.emplace_back(ia, ib, kp(a, b));
+          ct.emplace_back(ia, ib, cp(a, b));
+        } else {
+          ws.tangent_k(ia, ib) += kp(a, b);
+          ws.tangent_c(ia, ib) += cp(a, b);
+        }
       }
     }
   }
@@ -469,12 +519,12 @@ void EvalForces(const TdSystem& sys, TdWorkspace& ws, double theta, double theta
 
 double StoredEnergy(const TdSystem& sys, const TdWorkspace& ws, const Eigen::Ref<const VectorX>& x,
                     const Eigen::Ref<const VectorX>& v) {
-  return 0.5 * v.dot(sys.mass * v) + 0.5 * x.dot(sys.stiffness0 * x) + ws.mesh_energy;
+  return 0.5 * v.dot(sys.mass_sparse * v) + 0.5 * x.dot(sys.stiffness0_sparse * x) + ws.mesh_energy;
 }
 
 double DissipationPower(const TdSystem& sys, const TdWorkspace& ws,
                         const Eigen::Ref<const VectorX>& v) {
-  return v.dot(sys.damping0 * v) + ws.mesh_dissipation;
+  return v.dot(sys.damping0_sparse * v) + ws.mesh_dissipation;
 }
 
 double EstimateHighestFrequency(const TdSystem& sys, TdWorkspace& ws, double theta,
@@ -485,7 +535,8 @@ double EstimateHighestFrequency(const TdSystem& sys, TdWorkspace& ws, double the
   VectorX z = VectorX::Ones(sys.n);
   double lambda = 0.0;
   for (int it = 0; it < 60; ++it) {
-    VectorX y = sys.mass_ldlt->solve(ws.tangent_k * z);
+    VectorX y;
+    sys.mass_solver->Solve(ws.tangent_k * z, &y);
     const double norm = y.norm();
     if (!(norm > 0.0) || !std::isfinite(norm)) break;
     lambda = norm / z.norm();

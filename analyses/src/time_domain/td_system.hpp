@@ -13,6 +13,7 @@
 #include "geardyn/common/eigen_types.hpp"
 #include "geardyn/system/mesh_core.hpp"
 #include "geardyn/system/system_model.hpp"
+#include "mass_solver.hpp"
 
 namespace geardyn::internal {
 
@@ -64,7 +65,13 @@ struct TdSystem {
   double unbalanced_fraction = 0.0;  ///< relative part of f0 along the rigid modes (removed)
   std::vector<TdMeshTerm> terms;     ///< one per mesh
   int num_switching = 0;             ///< total switching functions
-  std::shared_ptr<const Eigen::LDLT<MatrixX>> mass_ldlt;  ///< M factorization
+  std::shared_ptr<const Eigen::LDLT<MatrixX>> mass_ldlt;  ///< M factorization (dense)
+  /// M⁻¹ by blocks (arrow-shaped tooth masses) or dense (mass_solver.hpp): the solve of every
+  /// explicit evaluation.
+  std::shared_ptr<const MassSolver> mass_solver;
+  /// Sparse copies of M, K0, C0 for the products of every evaluation (K0 and C0 act on the
+  /// system block only, M is an arrow matrix for tooth bodies): O(nnz) instead of O(n²).
+  SparseMatrixRowMajor mass_sparse, stiffness0_sparse, damping0_sparse;
   /// True when a mesh has a NonlinearMeshCore.
   bool has_nonlinear() const;
   /// True when some mesh has a piecewise-constant coefficient.
@@ -79,9 +86,15 @@ struct TdSystem {
 struct TdWorkspace {
   explicit TdWorkspace(const TdSystem& sys);
 
-  VectorX force;                      ///< (n) f0 − K0x − C0v − Σ f_k [N, N·m]
-  MatrixX tangent_k;                  ///< (n×n) −∂force/∂x (with_jacobians)
-  MatrixX tangent_c;                  ///< (n×n) −∂force/∂v (with_jacobians)
+  VectorX force;      ///< (n) f0 − K0x − C0v − Σ f_k [N, N·m]
+  MatrixX tangent_k;  ///< (n×n) −∂force/∂x (with_jacobians)
+  MatrixX tangent_c;  ///< (n×n) −∂force/∂v (with_jacobians)
+  /// When set (by an implicit stepper), EvalForces(with_jacobians) fills the sparse lists below
+  /// instead of the dense tangent_k / tangent_c (left untouched).
+  bool sparse_tangents = false;
+  /// −∂force/∂x and −∂force/∂v as triplets on the n coordinates (K0, C0 and every mesh;
+  /// duplicates to be summed) when sparse_tangents.
+  std::vector<Eigen::Triplet<double>> tangent_k_triplets, tangent_c_triplets;
   double mesh_energy = 0.0;           ///< Σ E_k [J]
   double mesh_dissipation = 0.0;      ///< Σ D_k [W] (mesh dampers and cores)
   double mesh_phase_power = 0.0;      ///< Σ P_k [W]
@@ -97,6 +110,10 @@ struct TdWorkspace {
   std::vector<VectorX> core_x, core_v;                               ///< gather buffers
   std::vector<VectorX> slice_k, slice_e;  ///< per mesh, shifted slice values (phase power)
 };
+
+/// @brief Appends scale·a as triplets to *out.
+void AppendTriplets(const SparseMatrixRowMajor& a, double scale,
+                    std::vector<Eigen::Triplet<double>>* out);
 
 /// @brief Evaluates the total force at (θ, θ̇, x, v) into ws (no allocation after construction).
 /// @param[in] theta system phase θ [rad]. @param[in] theta_rate θ̇ = ω_m [rad/s].

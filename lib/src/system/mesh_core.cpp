@@ -445,6 +445,9 @@ void NonlinearMeshCore::CalcForces(NonlinearMeshCoreWorkspace& ws, double theta,
             out->damping.cols() == n,
         "out: stiffness and damping must be " << n << "x" << n << " (use MakeOutput())");
   }
+  out->has_triplets = false;
+  out->stiffness_triplets.clear();
+  out->damping_triplets.clear();
   DoCalcForces(ws, theta, theta_rate, x, v, with_jacobians, out);
 }
 

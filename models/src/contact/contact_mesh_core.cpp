@@ -332,10 +332,32 @@ void ContactMeshCore::DoCalcForces(NonlinearMeshCoreWorkspace& ws_base, double t
                                    NonlinearMeshCoreOutput* out) const {
   auto& ws = static_cast<ContactWorkspace&>(ws_base);
   out->force.setZero();
-  if (with_jacobians) {
+  // Sparse Jacobians when the caller accepts them (NonlinearMeshCoreOutput::want_triplets): the
+  // tooth joints are diagonal and each contact couples ≤ 18 coordinates, so the dense n × n
+  // matrices (n = 312 for type-B teeth) would be mostly zeros that cost their clearing.
+  const bool sparse = with_jacobians && out->want_triplets;
+  out->has_triplets = sparse;
+  if (with_jacobians && !sparse) {
     out->stiffness.setZero();
     out->damping.setZero();
   }
+  auto& kt = out->stiffness_triplets;
+  auto& ct = out->damping_triplets;
+  // K(i, j) += value (and C): dense or appended.
+  auto add_k = [&](int i, int j, double value) {
+    if (sparse) {
+      kt.emplace_back(i, j, value);
+    } else {
+      out->stiffness(i, j) += value;
+    }
+  };
+  auto add_c = [&](int i, int j, double value) {
+    if (sparse) {
+      ct.emplace_back(i, j, value);
+    } else {
+      out->damping(i, j) += value;
+    }
+  };
   out->energy = 0.0;
   out->dissipation_power = 0.0;
   out->phase_power = 0.0;
@@ -374,8 +396,8 @@ void ContactMeshCore::DoCalcForces(NonlinearMeshCoreWorkspace& ws_base, double t
         out->energy += 0.5 * stiff[kind] * x(i) * x(i);
         out->dissipation_power += damp[kind] * v(i) * v(i);
         if (with_jacobians) {
-          out->stiffness(i, i) += stiff[kind];
-          out->damping(i, i) += damp[kind];
+          add_k(i, i, stiff[kind]);
+          add_c(i, i, damp[kind]);
         }
         out->channels(channel++) = x(i);
         margin = std::max(
@@ -424,8 +446,8 @@ void ContactMeshCore::DoCalcForces(NonlinearMeshCoreWorkspace& ws_base, double t
         if (with_jacobians) {
           for (int a = 0; a < c.n; ++a) {
             for (int b = 0; b < c.n; ++b) {
-              out->stiffness(c.index[a], c.index[b]) += law.d_force_d_gap * c.grad[a] * c.grad[b];
-              out->damping(c.index[a], c.index[b]) += law.d_force_d_rate * c.grad[a] * c.grad[b];
+              add_k(c.index[a], c.index[b], law.d_force_d_gap * c.grad[a] * c.grad[b]);
+              add_c(c.index[a], c.index[b], law.d_force_d_rate * c.grad[a] * c.grad[b]);
             }
           }
         }
@@ -440,9 +462,10 @@ void ContactMeshCore::DoCalcForces(NonlinearMeshCoreWorkspace& ws_base, double t
             const double dv = fr.d_force_d_normal * law.d_force_d_rate;
             for (int a = 0; a < c.n; ++a) {
               for (int b = 0; b < c.n; ++b) {
-                out->stiffness(c.index[a], c.index[b]) -= ds * c.slide[a] * c.grad[b];
-                out->damping(c.index[a], c.index[b]) -=
-                    dv * c.slide[a] * c.grad[b] + fr.d_force_d_speed * c.slide[a] * c.slide[b];
+                add_k(c.index[a], c.index[b], -ds * c.slide[a] * c.grad[b]);
+                add_c(
+                    c.index[a], c.index[b],
+                    -(dv * c.slide[a] * c.grad[b] + fr.d_force_d_speed * c.slide[a] * c.slide[b]));
               }
             }
           }

@@ -412,6 +412,16 @@ struct NonlinearMeshCoreOutput {
   /// (channel_names().size()) the core's own diagnostics at this state (e.g. per-tooth contact
   /// forces [N], contact status [-], tooth deflections [rad, m]); units in the names.
   VectorX channels;
+  /// Optional sparse form of the Jacobians (additive to the dense contract above). A caller that
+  /// accepts it sets `want_triplets` before CalcForces(with_jacobians = true); a core that
+  /// supports it then appends the nonzeros of −∂force/∂x and −∂force/∂v (core coordinate indices;
+  /// duplicates are to be summed) to the two lists instead of filling `stiffness` and `damping`
+  /// (left untouched, not zeroed), and sets `has_triplets`. A core that does not support it fills
+  /// the dense matrices and `has_triplets` stays false. CalcForces clears both lists and the flag.
+  bool want_triplets = false;
+  bool has_triplets = false;  ///< set by the core: the lists hold the Jacobians
+  std::vector<Eigen::Triplet<double>> stiffness_triplets;  ///< [N/m, N, N·m]
+  std::vector<Eigen::Triplet<double>> damping_triplets;    ///< [N·s/m, …]
 };
 
 /// @brief The escape hatch for nonlinear mesh cores that are not data (spec 03 tooth-contact
