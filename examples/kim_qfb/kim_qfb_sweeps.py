@@ -33,7 +33,8 @@ ALPHA = math.radians(20.0)
 # Kim Eq. (12) law of the [mesh.contact] defaults (SI): k [N/m^1.5], c [N s/m^1.25], m3.
 K_LAW, C_LAW, M3 = 1.24278e12, 5623.41, 0.25
 # Scene-level modal damping: the slice model's translational modes (~10 kHz) are met by mesh
-# harmonics and need it to be traced; the same for the contact model.
+# harmonics and need it to be traced. The contact model needs it too: Kim's law damps the mesh
+# mode by only ~0.7 % and the transverse bearing modes hardly at all (docs/benchmarks.md).
 NHB_MODAL_RATIO = 0.01
 # Damping the rig needs, in BOTH models (the scene's bearings have none): bearing dampers
 # (zeta ~ 0.05 of the mesh mode through the rz entries, translations and tilts alike) and a soft
