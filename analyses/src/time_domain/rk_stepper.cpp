@@ -4,6 +4,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 
+#include <cmath>
 #include <limits>
 
 #include "td_steppers.hpp"
@@ -44,18 +45,36 @@ class RkStepper final : public TdStepper {
     trial_v_ = y_.segment(n, n);
     trial_work_ = y_(2 * n);
     trial_dissipated_ = y_(2 * n + 1);
-    const double err = ErrorNorm(yerr_.head(n), yerr_.segment(n, n), trial_x_, trial_v_);
+    double err = ErrorNorm(yerr_.head(n), yerr_.segment(n, n), trial_x_, trial_v_);
+    Eval(t_ + h, trial_x_, trial_v_, false);
     if (sys_.num_switching > 0 && options_.locate_events) {
-      Eval(t_ + h, trial_x_, trial_v_, false);
       trial_switching_ = ws_.switching;
       trial_live_ = ws_.switching_live;
     }
+    // The energy quadrature in the error control: its increments against the energy the step
+    // moves (|W| + D + |ΔE| of the step), so that a kink of P or D that the state hardly sees
+    // (e.g. the involute → tip-corner hand-over) cannot spoil the balance unnoticed.
+    trial_mesh_energy_ = ws_.mesh_energy;
+    const double moved = std::abs(trial_work_) + std::abs(trial_dissipated_) +
+                         std::abs(trial_mesh_energy_ - mesh_energy_);
+    energy_scale_ = std::max(energy_scale_, std::abs(trial_mesh_energy_));
+    const double scale =
+        options_.relative_tolerance * moved + options_.absolute_tolerance * energy_scale_;
+    const double err_e = (std::abs(yerr_(2 * n)) + std::abs(yerr_(2 * n + 1))) / scale;
+    if (scale > 0.0) err = std::max(err, err_e);
     return err;
   }
+
+  void OnReset() override {
+    mesh_energy_ = ws_.mesh_energy;
+    energy_scale_ = std::max(energy_scale_, std::abs(mesh_energy_));
+  }
+  void OnRestart() override { mesh_energy_ = ws_.mesh_energy; }
 
   void Commit() override {
     x_ = trial_x_;
     v_ = trial_v_;
+    mesh_energy_ = trial_mesh_energy_;
   }
 
  private:
@@ -74,6 +93,7 @@ class RkStepper final : public TdStepper {
     return GSL_SUCCESS;
   }
 
+  double mesh_energy_ = 0.0, trial_mesh_energy_ = 0.0, energy_scale_ = 0.0;
   int dim_;
   VectorX y_, yerr_, acc_;
   gsl_odeiv2_step* step_ = nullptr;
