@@ -167,6 +167,11 @@ def sweep_job(a, teeth, torque, branch):
             a.max_periods, "--threads", "1", "--json"])
     path = os.path.join(a.out, f"kim-{teeth}-{torque:g}Nm-{branch}.json")
     t0 = time.time()
+    if a.reuse:  # redraw only: a missing or empty branch file is left out
+        if not os.path.exists(path) or os.path.getsize(path) == 0:
+            return teeth, torque, branch, 0, None, 0.0
+        with open(path) as f:
+            return teeth, torque, branch, 0, json.load(f), 0.0
     rc, sim = run(cmd, path)
     return teeth, torque, branch, rc, sim, time.time() - t0
 
@@ -188,6 +193,8 @@ def main():
                          "the same as the NHB model's)")
     ap.add_argument("--jobs", type=int, default=2, help="sweeps (tooth type x torque x branch) run "
                     "at once, one thread each")
+    ap.add_argument("--reuse", action="store_true",
+                    help="redraw from the branch JSON files in --out (missing ones left out), run no sweep")
     ap.add_argument("--nhb-only", action="store_true", help="only the NHB curves (fast)")
     ap.add_argument("--extra-json", action="append", default=[],
                     help="LABEL=FILE: single-speed `simulate --json` results to plot as points")
