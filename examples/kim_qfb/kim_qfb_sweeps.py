@@ -152,7 +152,8 @@ def svg(path, torque, nhb, series, note):
     for i, (text, c, kind) in enumerate(legend):
         y = T + 14 + 16 * i
         e.append(f'<text x="{W-R-10}" y="{y}" text-anchor="end" fill="{c}">{text} ({"—" if kind=="line" else kind})</text>')
-    e.append(f'<text x="{L}" y="{H-8}" font-size="10">{note}</text>')
+    for i, line in enumerate(note.split("\n")):  # the note's lines at the bottom
+        e.append(f'<text x="{L}" y="{H - 14 + 10 * i}" font-size="10">{line}</text>')
     e.append("</svg>")
     with open(path, "w") as f:
         f.write("\n".join(e) + "\n")
@@ -252,7 +253,7 @@ def main():
                     series[torque].setdefault(label, []).append(
                         (p["mesh_frequency_hz"], p["meshes"][0]["rms_dte_m"] * 1e6))
         note = (f"slice model: k = {k_len:.3g} N/m² (contact K̄ = {kbar:.3g} N/m, type A), "
-                f"c_m = {c_m:.3g} N·s/m; both: bearing dampers, wheel rz 1e4 N·m/rad, modal ratio "
+                f"c_m = {c_m:.3g} N·s/m;\nboth: bearing dampers, wheel rz 1e4 N·m/rad, modal ratio "
                 f"{NHB_MODAL_RATIO}; contact tol {a.tolerance}, steady {a.steady_tolerance} "
                 f"(steady {counts[torque][0]}, not steady {counts[torque][1]})")
         svg(os.path.join(a.out, f"kim-{torque:g}Nm.svg"), torque, list(segs.values()),
