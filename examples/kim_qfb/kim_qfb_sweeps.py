@@ -11,7 +11,7 @@ For each mean torque (default 100, 200, 300 N m) this script
   3. writes docs-ready SVG plots kim-<T>Nm.svg and the raw JSON into --out.
 
 Usage: kim_qfb_sweeps.py --geardyn build/test/apps/geardyn --out docs/figures [--points 57]
-       [--torques 100,200,300] [--teeth revolute,bushing] [--nhb-only]
+       [--torques 100,200,300] [--teeth revolute,bushing] [--jobs 2] [--reuse] [--nhb-only]
 """
 import argparse
 import concurrent.futures
