@@ -65,7 +65,9 @@ int main(int argc, char** argv) {
   std::printf("method,knob,wall_time_s,error,evaluations\n");
   std::vector<std::string> notes;
   auto report = [&](const char* method, double knob, const TimeResponse& r) {
-    const VectorX& d = r.meshes[0].dte;
+    // A failed run (e.g. max_steps) records nothing: no meshes.
+    const VectorX d = r.meshes.empty() ? VectorX() : r.meshes[0].dte;
+    const double rms = r.meshes.empty() ? std::nan("") : r.meshes[0].rms_dte;
     const double err =
         d.size() == dte_ref.size()
             ? std::sqrt((d - dte_ref).squaredNorm() / static_cast<double>(d.size())) / rms_ref
@@ -81,7 +83,7 @@ int main(int argc, char** argv) {
                   "# %s %g: %ld steps, %ld rejected, %ld events, %.2f ms per mesh cycle, energy "
                   "error %.2e, RMS DTE %.9e m, %s",
                   method, knob, r.steps, count("rejected_steps"), r.events,
-                  1e3 * r.summary.wall_time_s / cycles, r.max_energy_error, r.meshes[0].rms_dte,
+                  1e3 * r.summary.wall_time_s / cycles, r.max_energy_error, rms,
                   r.summary.message.c_str());
     notes.emplace_back(buf);
     std::fflush(stdout);
