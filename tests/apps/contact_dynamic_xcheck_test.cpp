@@ -18,9 +18,11 @@
 // model's entering tooth touches with its sharp tip corner before A over a window that grows
 // with the instantaneous approach (0.62 mm of roll at the static 100 N·m approach, confirmed by
 // independent geometry in TipCornerWindowsEqualTheCornerGeometry), i.e. a stiffness that
-// depends on the state, which the quasi-static LTV freezes at the static approach. Also failing:
-// the energy balance of the contact runs at 6500 and 7500 Hz (1.4e-4 and 2.3e-4 > 1e-4, unchanged
-// at tolerance 1e-11).
+// depends on the state, which the quasi-static LTV freezes at the static approach. The energy
+// balance of these runs (1.4e-4 and 2.3e-4 at 6500 and 7500 Hz before) was an uncontrolled
+// quadrature error at the involute → tip-corner hand-overs, fixed by the rk8pd error control of
+// ∫P and ∫D (docs/design.md, "Time integration"): 1.1e-5 at 6500 Hz, rtol 1e-8, 24 periods
+// (docs/benchmarks.md, "Energy balance of contact runs"); its assertion below stays.
 #include <gtest/gtest.h>
 
 #include <cstdio>
