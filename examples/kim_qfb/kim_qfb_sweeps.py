@@ -11,14 +11,16 @@ For each mean torque (default 100, 200, 300 N m) this script
   3. writes docs-ready SVG plots kim-<T>Nm.svg and the raw JSON into --out.
 
 Usage: kim_qfb_sweeps.py --geardyn build/test/apps/geardyn --out docs/figures [--points 57]
-       [--torques 100,200,300] [--teeth revolute,bushing] [--nhb-only]
+       [--torques 100,200,300] [--teeth revolute,bushing] [--jobs 2] [--reuse] [--nhb-only]
 """
 import argparse
+import concurrent.futures
 import json
 import math
 import os
 import subprocess
 import sys
+import time
 
 SCENE = "builtin:kahraman-blankenship-rig"
 MESH = "mesh.pinion-wheel"
@@ -30,13 +32,19 @@ R_B, R_A, A, M, B = 0.070477, 0.078, 0.150, 0.003, 0.020
 ALPHA = math.radians(20.0)
 # Kim Eq. (12) law of the [mesh.contact] defaults (SI): k [N/m^1.5], c [N s/m^1.25], m3.
 K_LAW, C_LAW, M3 = 1.24278e12, 5623.41, 0.25
-# Scene-level modal damping: the rig's bearings carry no damping, and the slice model's
-# translational modes (~10 kHz) are met by mesh harmonics. The contact model needs it too: Kim's
-# law damps the mesh mode by only ~0.7 % and the transverse bearing modes hardly at all, so
-# without it a type-A run does not settle (docs/benchmarks.md, Kim section: change per mesh cycle
-# still 0.1-0.5 after 94 cycles at 2000 Hz; with 0.01 steady to 1e-4 in 106 cycles).
+# Scene-level modal damping: the slice model's translational modes (~10 kHz) are met by mesh
+# harmonics and need it to be traced. The contact model needs it too: Kim's law damps the mesh
+# mode by only ~0.7 % and the transverse bearing modes hardly at all (docs/benchmarks.md).
 NHB_MODAL_RATIO = 0.01
-CONTACT_MODAL_RATIO = 0.01
+# Damping the rig needs, in BOTH models (the scene's bearings have none): bearing dampers
+# (zeta ~ 0.05 of the mesh mode through the rz entries, translations and tilts alike) and a soft
+# torsional support of the wheel (1e4 N m/rad, a 180 Hz mode far below the sweep) so that the
+# rigid-body rotation settles: without it the contact model's speed and mesh phase drift after
+# every transient and no speed becomes steady (tests/apps/contact_dynamic_xcheck_test.cpp).
+RIG_SETS = ["bearing.pinion-support.damping=[16600,16600,5260,63,63,24]",
+            "bearing.wheel-support.damping=[16600,16600,5260,63,63,24]",
+            "bearing.wheel-support.stiffness=[1e10,1e10,1e9,1e8,1e8,1e4]",
+            f"damping.modal_ratio={NHB_MODAL_RATIO}"]
 
 
 def contact_ratio():
@@ -83,7 +91,7 @@ def matched_slice_sets(geardyn, torque, out):
     f_pair = torque / R_B / eps
     c_m = eps * C_LAW * (f_pair / K_LAW) ** (2.0 * M3 / 3.0)
     return kbar, k_len, c_m, [f"{MESH}.model=slices", f"{MESH}.stiffness_per_length={k_len:.6g}",
-                              f"{MESH}.damping={c_m:.6g}", f"damping.modal_ratio={NHB_MODAL_RATIO}"]
+                              f"{MESH}.damping={c_m:.6g}"] + RIG_SETS
 
 
 # Upper end of the RMS DTE axis [um]: Kim's figures end at 20 um; larger values (the slice
@@ -144,10 +152,29 @@ def svg(path, torque, nhb, series, note):
     for i, (text, c, kind) in enumerate(legend):
         y = T + 14 + 16 * i
         e.append(f'<text x="{W-R-10}" y="{y}" text-anchor="end" fill="{c}">{text} ({"—" if kind=="line" else kind})</text>')
-    e.append(f'<text x="{L}" y="{H-8}" font-size="10">{note}</text>')
+    for i, line in enumerate(note.split("\n")):  # the note's lines at the bottom
+        e.append(f'<text x="{L}" y="{H - 14 + 10 * i}" font-size="10">{line}</text>')
     e.append("</svg>")
     with open(path, "w") as f:
         f.write("\n".join(e) + "\n")
+
+
+def sweep_job(a, teeth, torque, branch):
+    """One `simulate` stepped sweep (one tooth type, torque and branch) -> its JSON file."""
+    cmd = ([a.geardyn, "simulate", SCENE] + sets(TEETH_SETS + [f"{MESH}.contact.teeth={teeth}"] +
+                                                 a.contact_set) +
+           ["--torque", f"{torque:g}", "--mesh-frequency", f"700:3500:{a.points}", "--sweep", branch,
+            "--tolerance", a.tolerance, "--steady-tolerance", a.steady_tolerance, "--max-periods",
+            a.max_periods, "--threads", "1", "--json"])
+    path = os.path.join(a.out, f"kim-{teeth}-{torque:g}Nm-{branch}.json")
+    t0 = time.time()
+    if a.reuse:  # redraw only: a missing or empty branch file is left out
+        if not os.path.exists(path) or os.path.getsize(path) == 0:
+            return teeth, torque, branch, 0, None, 0.0
+        with open(path) as f:
+            return teeth, torque, branch, 0, json.load(f), 0.0
+    rc, sim = run(cmd, path)
+    return teeth, torque, branch, rc, sim, time.time() - t0
 
 
 def main():
@@ -157,17 +184,29 @@ def main():
     ap.add_argument("--torques", default="100,200,300")
     ap.add_argument("--teeth", default="revolute,bushing")
     ap.add_argument("--points", type=int, default=57, help="speeds per branch (700-3500 Hz)")
-    ap.add_argument("--tolerance", default="1e-6")
-    ap.add_argument("--steady-tolerance", default="1e-4")
-    # Periods of the steady test are mesh cycles (identical teeth: the tooth-shift symmetry).
-    ap.add_argument("--max-periods", default="600")
+    ap.add_argument("--tolerance", default="1e-4")
+    ap.add_argument("--steady-tolerance", default="1e-3")
+    ap.add_argument("--max-periods", default="200",
+                    help="mesh cycles per speed at most (the steady test is over one mesh cycle "
+                         "with the tooth shift); a point not steady by then is kept and drawn")
+    ap.add_argument("--contact-set", action="append", default=None,
+                    help="extra --set of the contact runs (default: the rig damping RIG_SETS, "
+                         "the same as the NHB model's)")
+    ap.add_argument("--jobs", type=int, default=2, help="sweeps (tooth type x torque x branch) run "
+                    "at once, one thread each")
+    ap.add_argument("--reuse", action="store_true",
+                    help="redraw from the branch JSON files in --out (missing ones left out), run no sweep")
     ap.add_argument("--nhb-only", action="store_true", help="only the NHB curves (fast)")
     ap.add_argument("--extra-json", action="append", default=[],
                     help="LABEL=FILE: single-speed `simulate --json` results to plot as points")
     a = ap.parse_args()
+    if a.contact_set is None:
+        a.contact_set = list(RIG_SETS)
     os.makedirs(a.out, exist_ok=True)
     names = {"revolute": "type A", "bushing": "type B"}
-    for torque in [float(t) for t in a.torques.split(",")]:
+    torques = [float(t) for t in a.torques.split(",")]
+    nhbs = {}
+    for torque in torques:
         kbar, k_len, c_m, slice_sets = matched_slice_sets(a.geardyn, torque, a.out)
         print(f"{torque:g} N m: Kbar {kbar:.4g} N/m, slice k {k_len:.4g} N/m2, c_m {c_m:.4g} N s/m",
               file=sys.stderr)
@@ -183,31 +222,42 @@ def main():
             segs[(p.get("segment", 0), p.get("branch", 0))][0].append(p["mesh_frequency_hz"])
             segs[(p.get("segment", 0), p.get("branch", 0))][1].append(
                 p["meshes"][0]["rms_dte_m"] * 1e6 if ok else float("nan"))
-        series = {}
-        if not a.nhb_only:
-            for teeth in a.teeth.split(","):
-                rc, sim = run([a.geardyn, "simulate", SCENE] +
-                              sets(TEETH_SETS + [f"{MESH}.contact.teeth={teeth}",
-                                                 f"damping.modal_ratio={CONTACT_MODAL_RATIO}"]) +
-                              ["--torque", f"{torque:g}", "--mesh-frequency", f"700:3500:{a.points}",
-                               "--sweep", "both", "--tolerance", a.tolerance, "--steady-tolerance",
-                               a.steady_tolerance, "--max-periods", a.max_periods, "--progress", "--json"],
-                              os.path.join(a.out, f"kim-{teeth}-{torque:g}Nm.json"))
-                for p in (sim or {}).get("points", []):
-                    label = f"{names[teeth]} {p['branch']}"
-                    y = p["meshes"][0]["rms_dte_m"] * 1e6 if p["status"] == "success" else float("nan")
-                    series.setdefault(label, []).append((p["mesh_frequency_hz"], y))
+        nhbs[torque] = (kbar, k_len, c_m, segs)
+    series = {t: {} for t in torques}
+    counts = {t: [0, 0] for t in torques}  # steady, not steady
+    if not a.nhb_only:
+        jobs = [(teeth, t, b) for teeth in a.teeth.split(",") for t in torques for b in ("up", "down")]
+        t0 = time.time()
+        with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as pool:
+            for teeth, torque, branch, rc, sim, wall in pool.map(lambda j: sweep_job(a, *j), jobs):
+                pts = (sim or {}).get("points", [])
+                print(f"{names[teeth]} {torque:g} N m {branch}: {len(pts)} points, {wall:.1f} s wall, "
+                      f"exit {rc}", file=sys.stderr, flush=True)
+                for p in pts:
+                    # A point not steady within --max-periods is still the branch (the sweep goes
+                    # on from its state): drawn with its last period's RMS, counted apart.
+                    good = p["status"] in ("success", "not_converged") and p.get("meshes")
+                    y = p["meshes"][0]["rms_dte_m"] * 1e6 if good else float("nan")
+                    counts[torque][0 if p["status"] == "success" else 1] += 1
+                    series[torque].setdefault(f"{names[teeth]} {p['branch']}", []).append(
+                        (p["mesh_frequency_hz"], y))
+        print(f"all sweeps: {time.time() - t0:.1f} s wall, {a.jobs} jobs", file=sys.stderr)
+    for torque in torques:
+        kbar, k_len, c_m, segs = nhbs[torque]
         for item in a.extra_json:
             label, path = item.split("=", 1)
             with open(path) as f:
                 sim = json.load(f)
             for p in sim.get("points", []):
                 if abs(p["torque_nm"] - torque) < 1e-9:
-                    series.setdefault(label, []).append(
+                    series[torque].setdefault(label, []).append(
                         (p["mesh_frequency_hz"], p["meshes"][0]["rms_dte_m"] * 1e6))
-        note = (f"slice model: k = {k_len:.3g} N/m² (contact model's quasi-static mean K = {kbar:.3g} N/m, "
-                f"type A), c_m = {c_m:.3g} N·s/m (Kim damper at the mean pair load), modal ratio {NHB_MODAL_RATIO}")
-        svg(os.path.join(a.out, f"kim-{torque:g}Nm.svg"), torque, list(segs.values()), series, note)
+        note = (f"slice model: k = {k_len:.3g} N/m² (contact K̄ = {kbar:.3g} N/m, type A), "
+                f"c_m = {c_m:.3g} N·s/m;\nboth: bearing dampers, wheel rz 1e4 N·m/rad, modal ratio "
+                f"{NHB_MODAL_RATIO}; contact tol {a.tolerance}, steady {a.steady_tolerance} "
+                f"(steady {counts[torque][0]}, not steady {counts[torque][1]})")
+        svg(os.path.join(a.out, f"kim-{torque:g}Nm.svg"), torque, list(segs.values()),
+            series[torque], note)
 
 
 if __name__ == "__main__":
