@@ -187,6 +187,27 @@ MeshTransmissionError MakeTransmissionError(const Scene& scene, const MeshDef& m
   return {TransmissionErrorCoefficient(*te, mesh), {}};
 }
 
+// True when the slice model's lumping changes the answer: tooth pairs in contact at once (in one
+// σ band) with different unloaded separations. The slice core has one spring per σ band over all
+// the pairs in it, with their stiffness-weighted mean separation e_s = ε_η − σ_s ε_ζ
+// (MakeSliceMeshCore), i.e. Σ_j k_j (v − ē)⁺ instead of Σ_j k_j (v − e_j)⁺: exact while every
+// pair stays loaded (v ≥ max e_j), wrong where one pair should separate (docs/design.md, "The
+// slice model's tip relief"). Profile relief and pitch deviations differ between the pairs; lead
+// modifications only on a helical pair (the lines in one σ band cross it at different y); a
+// runout is uniform on all lines.
+bool SeparationDiffersBetweenPairs(const MeshModelDef& model, const ContactLineModel& lines) {
+  const ToothModifications& m = model.modifications;
+  const auto nonzero = [](const std::vector<double>& v) {
+    return std::any_of(v.begin(), v.end(), [](double x) { return x != 0.0; });
+  };
+  const bool lead =
+      (m.lead_crowning != 0.0 || m.lead_slope != 0.0) && lines.zone().base_helix_angle != 0.0;
+  return m.pinion_tip_relief.is_active() || m.gear_tip_relief.is_active() ||
+         m.pinion_root_relief.is_active() || m.gear_root_relief.is_active() || lead ||
+         nonzero(model.errors.pinion_pitch_deviations) ||
+         nonzero(model.errors.gear_pitch_deviations);
+}
+
 }  // namespace
 
 std::optional<double> MeshLineLoad(const Scene& scene, const MeshDef& mesh) {
@@ -283,6 +304,17 @@ BuiltMeshCore BuildMeshCore(const Scene& scene, const MeshDef& mesh, bool transm
     MeshTransmissionError te = MakeTransmissionError(scene, mesh, source.contact_lines, runout);
     source.transmission_error = std::move(te.coefficient);
     source.transmission_error_sidebands = std::move(te.sidebands);
+    if (model.level == MeshModelLevel::kNonlinearSlices &&
+        SeparationDiffersBetweenPairs(model, source.contact_lines)) {
+      warnings.push_back(
+          "mesh." + mesh.name +
+          ": model = \"slices\" gives the tooth pairs in contact at once one separation per "
+          "face band (their stiffness-weighted mean, the linear-limit transmission error): "
+          "relief, pitch deviations (or lead modifications of a helical pair) that should unload "
+          "one pair while another carries the load keep both loaded, so the STE, K(theta) and "
+          "contact loss are exact only while the separation differences stay below the tooth "
+          "deflection (use model = \"contact\" for deeper relief)");
+    }
   }
 
   MeshCoreOptions options = model.core_options;
