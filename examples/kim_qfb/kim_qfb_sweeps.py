@@ -184,7 +184,7 @@ def main():
     ap.add_argument("--torques", default="100,200,300")
     ap.add_argument("--teeth", default="revolute,bushing")
     ap.add_argument("--points", type=int, default=57, help="speeds per branch (700-3500 Hz)")
-    ap.add_argument("--tolerance", default="1e-4")
+    ap.add_argument("--tolerance", default="1e-5")
     ap.add_argument("--steady-tolerance", default="1e-3")
     ap.add_argument("--max-periods", default="200",
                     help="mesh cycles per speed at most (the steady test is over one mesh cycle "

@@ -17,6 +17,7 @@
 #include "geardyn/common/errors.hpp"
 #include "geardyn/system/probes.hpp"
 #include "static_continuation.hpp"
+#include "td_symmetry.hpp"
 #include "td_system.hpp"
 
 namespace geardyn {
@@ -466,7 +467,10 @@ TimeRunEstimate EstimateTimeRun(const SystemModel& model, double mesh_frequency_
   out.min_periods = static_cast<long>(std::max(2, so.min_periods)) + so.consecutive_periods - 1 +
                     so.record_periods;
   out.min_periods = std::min<long>(out.min_periods, so.max_periods + so.record_periods);
-  const double cycles = static_cast<double>(model.period_meshes() * so.period_multiple);
+  // The period the run's steady test uses (the symmetry period of identical tooth bodies unless
+  // switched off: td_symmetry.hpp), not the model's hunting period.
+  const double cycles = static_cast<double>(
+      internal::MakeTdSymmetry(sys, so.use_symmetry).period_meshes * so.period_multiple);
   out.min_simulated_time_s = static_cast<double>(out.min_periods) * cycles / mesh_frequency_hz;
   out.static_deflection.assign(static_cast<std::size_t>(model.num_meshes()), 0.0);
   const double theta0 = options.initial_phase;

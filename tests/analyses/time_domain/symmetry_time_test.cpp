@@ -207,6 +207,22 @@ TEST(SymmetryTime, ShiftedSteadyStateEqualsTheFullPeriodOne) {
   EXPECT_LT(RelativeDifference(cycle.final_state.tail(n), v_a), 1e-6);
 }
 
+// The pre-run estimate counts the periods the steady test will use: with the symmetry one mesh
+// cycle each, without it the hunting period z (min periods with the defaults: 2 + 3 − 1 + 1 = 5).
+// A low-speed warning computed from the hunting period would be z times too pessimistic.
+TEST(SymmetryTime, RunEstimateCountsTheSymmetryPeriod) {
+  const RingParams p;
+  const SystemModel model = RingPair(p);
+  constexpr double kF = 2500.0;
+  const TimeRunEstimate sym = EstimateTimeRun(model, kF, Options(true));
+  const TimeRunEstimate full = EstimateTimeRun(model, kF, Options(false));
+  ASSERT_TRUE(sym.summary.ok()) << sym.summary.message;
+  ASSERT_TRUE(full.summary.ok()) << full.summary.message;
+  ASSERT_EQ(sym.min_periods, full.min_periods);
+  EXPECT_NEAR(sym.min_simulated_time_s, static_cast<double>(sym.min_periods) / kF, 1e-12);
+  EXPECT_NEAR(full.min_simulated_time_s, static_cast<double>(full.min_periods * p.z) / kF, 1e-12);
+}
+
 TEST(SymmetryTime, SeveralMeshesCombineTheirShiftsWithThePhaseRatios) {
   RingParams p1, p2;
   p1.z = 3;

@@ -399,7 +399,8 @@ struct TimeRunEstimate {
   std::vector<double> static_deflection;
   /// The fewest periods a run to steady state integrates: the steady test compares consecutive
   /// periods from max(2, min_periods) on, so max(2, min_periods) + consecutive_periods − 1, plus
-  /// record_periods [-] (each of period_multiple × P mesh cycles).
+  /// record_periods [-] (each of period_multiple × P mesh cycles, P the steady test's period:
+  /// the symmetry period of identical tooth bodies unless steady.use_symmetry is false).
   long min_periods = 0;
   double min_simulated_time_s = 0.0;  ///< min_periods × P × period_multiple / f_m [s]
   /// Oscillations of the highest mode within min_simulated_time_s [-]: the work of a
