@@ -23,6 +23,7 @@
 namespace geardyn {
 namespace {
 
+using internal::SolveBordered;
 using internal::TdMeshTerm;
 
 // Regularised continuation (see SimulateQuasiStatic): λ bounds, its factors and the iteration
@@ -64,34 +65,6 @@ Vector2 CoreForcePair(const TdMeshTerm& t, const VectorX& core_force) {
   const Eigen::CompleteOrthogonalDecomposition<MatrixX> cod(MatrixX(t.G.transpose()));
   const MatrixX a = cod.pseudoInverse();
   return -(a * core_force.head(12));
-}
-
-/// [A, MV; VᵀM, 0][dx; λ] = [b; 0] with the symmetric diagonal scaling of td_system.cpp's
-/// SolveBordered (a scale-free rank decision). False when singular or not finite.
-bool SolveBordered(const MatrixX& A, const MatrixX& mv, const VectorX& b, VectorX* dx) {
-  const auto n = A.rows(), r = mv.cols();
-  MatrixX a = MatrixX::Zero(n + r, n + r);
-  a.topLeftCorner(n, n) = A;
-  a.topRightCorner(n, r) = mv;
-  a.bottomLeftCorner(r, n) = mv.transpose();
-  VectorX rhs = VectorX::Zero(n + r);
-  rhs.head(n) = b;
-  VectorX s = VectorX::Ones(n + r);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const double d = std::abs(a(i, i));
-    if (d > 0.0) s(i) = 1.0 / std::sqrt(d);
-  }
-  for (Eigen::Index j = 0; j < r; ++j) {
-    const double c = (s.head(n).asDiagonal() * mv.col(j)).norm();
-    if (c > 0.0) s(n + j) = 1.0 / c;
-  }
-  a = s.asDiagonal() * a * s.asDiagonal();
-  rhs = s.asDiagonal() * rhs;
-  Eigen::FullPivLU<MatrixX> lu(a);
-  lu.setThreshold(1e-13);
-  if (!lu.isInvertible()) return false;
-  *dx = (s.asDiagonal() * lu.solve(rhs)).head(n);
-  return dx->allFinite();
 }
 
 /// One static solve with its outcome.

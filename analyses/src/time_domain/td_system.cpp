@@ -549,11 +549,6 @@ double EstimateHighestFrequency(const TdSystem& sys, TdWorkspace& ws, double the
 
 namespace geardyn::internal {
 
-namespace {
-
-/// Solves [A, MV; VᵀM, 0][dx; λ] = [b; 0] with a symmetric diagonal scaling (m and rad, N/m and
-/// kg mix: unit diagonal on the coordinates, unit-norm border columns) so that the rank decision
-/// of the full-pivoting LU is scale-free. False when singular.
 bool SolveBordered(const MatrixX& A, const MatrixX& mv, const VectorX& b, VectorX* dx) {
   const auto n = A.rows(), r = mv.cols();
   MatrixX a = MatrixX::Zero(n + r, n + r);
@@ -579,8 +574,6 @@ bool SolveBordered(const MatrixX& A, const MatrixX& mv, const VectorX& b, Vector
   *dx = (s.asDiagonal() * lu.solve(rhs)).head(n);
   return dx->allFinite();
 }
-
-}  // namespace
 
 TdStatic SolveStatic(const TdSystem& sys, TdWorkspace& ws, double theta0, const VectorX* start) {
   TdStatic out;

@@ -138,6 +138,12 @@ double EstimateHighestFrequency(const TdSystem& sys, TdWorkspace& ws, double the
 
 /// @brief Static equilibrium at θ₀ (time_response.hpp SolveTimeDomainStatic): x, iterations,
 /// success flag and message.
+/// Solves [A, MV; VᵀM, 0][dx; λ] = [b; 0] (the rigid modes V bordered out) with a symmetric
+/// diagonal scaling (m and rad, N/m and kg mix: unit diagonal on the coordinates, unit-norm border
+/// columns) so that the rank decision of the full-pivoting LU is scale-free. False when singular
+/// or not finite.
+bool SolveBordered(const MatrixX& A, const MatrixX& mv, const VectorX& b, VectorX* dx);
+
 struct TdStatic {
   VectorX x;
   int iterations = 0;
