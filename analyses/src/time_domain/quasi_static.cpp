@@ -88,12 +88,7 @@ StaticSolve RegularisedStatic(const internal::TdSystem& sys, internal::TdWorkspa
   const VectorX zero = VectorX::Zero(sys.n);
   const MatrixX mv = sys.mass * sys.rigid_modes;
   EvalForces(sys, ws, theta, 0.0, zero, zero, true);
-  MatrixX reg = sys.guess_stiffness;
-  for (const TdMeshTerm& t : sys.terms) {
-    if (t.kind != TdMeshTerm::Kind::kNonlinear || t.num_internal == 0) continue;
-    reg.block(t.internal_offset, t.internal_offset, t.num_internal, t.num_internal) =
-        ws.tangent_k.block(t.internal_offset, t.internal_offset, t.num_internal, t.num_internal);
-  }
+  const MatrixX reg = internal::RestStiffness(sys, ws);
   // Force scale of "equilibrium already": the load, or without load the force of 1 nm on the
   // stiffest regularising spring (round-off of a state at rest).
   const double load_scale = std::max(sys.load0.lpNorm<Eigen::Infinity>(),

@@ -575,6 +575,16 @@ bool SolveBordered(const MatrixX& A, const MatrixX& mv, const VectorX& b, Vector
   return dx->allFinite();
 }
 
+MatrixX RestStiffness(const TdSystem& sys, const TdWorkspace& ws) {
+  MatrixX k = sys.guess_stiffness;
+  for (const TdMeshTerm& t : sys.terms) {
+    if (t.kind != TdMeshTerm::Kind::kNonlinear || t.num_internal == 0) continue;
+    k.block(t.internal_offset, t.internal_offset, t.num_internal, t.num_internal) =
+        ws.tangent_k.block(t.internal_offset, t.internal_offset, t.num_internal, t.num_internal);
+  }
+  return k;
+}
+
 TdStatic SolveStatic(const TdSystem& sys, TdWorkspace& ws, double theta0, const VectorX* start) {
   TdStatic out;
   out.x = VectorX::Zero(sys.n);
@@ -583,12 +593,7 @@ TdStatic SolveStatic(const TdSystem& sys, TdWorkspace& ws, double theta0, const 
   // Starting guess: the linear problem with every slice loaded, the stand-in springs of the
   // nonlinear cores and their tangents at rest (their internal springs).
   EvalForces(sys, ws, theta0, 0.0, zero, zero, true);
-  MatrixX guess = sys.guess_stiffness;
-  for (const TdMeshTerm& t : sys.terms) {
-    if (t.kind != TdMeshTerm::Kind::kNonlinear || t.num_internal == 0) continue;
-    guess.block(t.internal_offset, t.internal_offset, t.num_internal, t.num_internal) =
-        ws.tangent_k.block(t.internal_offset, t.internal_offset, t.num_internal, t.num_internal);
-  }
+  const MatrixX guess = RestStiffness(sys, ws);
   VectorX x_guess;
   if (start != nullptr) {
     out.x = *start;

@@ -144,6 +144,11 @@ double EstimateHighestFrequency(const TdSystem& sys, TdWorkspace& ws, double the
 /// or not finite.
 bool SolveBordered(const MatrixX& A, const MatrixX& mv, const VectorX& b, VectorX* dx);
 
+/// The stiffness of the static start: sys.guess_stiffness (every slice loaded, the stand-in
+/// springs of the nonlinear cores) with the cores' internal tangents of ws.tangent_k (their
+/// internal springs; EvalForces with Jacobians at rest must have filled ws).
+MatrixX RestStiffness(const TdSystem& sys, const TdWorkspace& ws);
+
 struct TdStatic {
   VectorX x;
   int iterations = 0;
