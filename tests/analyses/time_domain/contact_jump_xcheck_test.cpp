@@ -35,6 +35,7 @@
 #include "geardyn/analyses/time_response.hpp"
 #include "geardyn/models/scene/scene_reader.hpp"
 #include "geardyn/models/system/scene_system.hpp"
+#include "support/sweep_jumps.hpp"
 
 namespace geardyn {
 namespace {
@@ -68,20 +69,7 @@ SystemModel SliceModel() {
   return BuildSceneSystem(LoadScene(kRig, sets)).model;
 }
 
-/// First step of a branch where the RMS DTE changes by more than the factor `ratio` (> 1: up,
-/// < 1: down) from one point to the next: the midpoint of that step [Hz], NaN when none.
-double JumpFrequency(const TimeSweep& sweep, SweepBranch branch, double ratio) {
-  const TimeSweepPoint* previous = nullptr;
-  for (const TimeSweepPoint& p : sweep.points) {
-    if (p.branch != branch) continue;
-    if (previous != nullptr && (ratio > 1.0 ? p.rms_dte[0] > ratio * previous->rms_dte[0]
-                                            : p.rms_dte[0] < ratio * previous->rms_dte[0])) {
-      return 0.5 * (p.mesh_frequency_hz + previous->mesh_frequency_hz);
-    }
-    previous = &p;
-  }
-  return std::nan("");
-}
+using test::JumpFrequency;
 
 TEST(ContactJumpCrossCheck, ContactSweepsJumpWhereTheSliceNonlinearHbFolds) {
   SystemNhbOptions o;

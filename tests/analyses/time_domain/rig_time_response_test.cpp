@@ -19,6 +19,7 @@
 #include "geardyn/analyses/harmonic_balance.hpp"
 #include "geardyn/analyses/system_nonlinear_hb.hpp"
 #include "geardyn/analyses/time_response.hpp"
+#include "support/sweep_jumps.hpp"
 
 namespace geardyn {
 namespace {
@@ -90,20 +91,7 @@ TEST(RigTimeResponse, SliceSteadyStateEqualsNonlinearHarmonicBalance) {
   }
 }
 
-/// First step of a branch where the RMS DTE changes by more than the factor `ratio` (> 1: up,
-/// < 1: down) from one point to the next: the midpoint of that step [Hz], NaN when none.
-double JumpFrequency(const TimeSweep& sweep, SweepBranch branch, double ratio) {
-  const TimeSweepPoint* previous = nullptr;
-  for (const TimeSweepPoint& p : sweep.points) {
-    if (p.branch != branch) continue;
-    if (previous != nullptr && (ratio > 1.0 ? p.rms_dte[0] > ratio * previous->rms_dte[0]
-                                            : p.rms_dte[0] < ratio * previous->rms_dte[0])) {
-      return 0.5 * (p.mesh_frequency_hz + previous->mesh_frequency_hz);
-    }
-    previous = &p;
-  }
-  return std::nan("");
-}
+using test::JumpFrequency;
 
 // The softening primary resonance of the slice rig (kb_rig_jumps_test.cpp): the up sweep stays
 // on the small-amplitude branch up to its fold and jumps up, the down sweep (from the up sweep's
