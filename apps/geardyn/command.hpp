@@ -48,5 +48,6 @@ Command AddScenesCommand(CLI::App& app);
 Command AddFloquetCommand(CLI::App& app);
 Command AddStabilityChartCommand(CLI::App& app);
 Command AddSimulateCommand(CLI::App& app);
+Command AddCompareCommand(CLI::App& app);
 
 }  // namespace geardyn::app

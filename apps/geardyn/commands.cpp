@@ -21,8 +21,9 @@ void AddSceneOptions(CLI::App* cmd, SceneCommandOptions* opts) {
 const std::vector<CommandFactory>& CommandFactories() {
   // One line per subcommand; keep the order of `geardyn --help`.
   static const std::vector<CommandFactory> factories = {
-      &AddInfoCommand,    &AddScenesCommand,         &AddMeshCommand, &AddModesCommand,
-      &AddFloquetCommand, &AddStabilityChartCommand, &AddHbCommand,   &AddSimulateCommand,
+      &AddInfoCommand,  &AddScenesCommand,   &AddMeshCommand,
+      &AddModesCommand, &AddFloquetCommand,  &AddStabilityChartCommand,
+      &AddHbCommand,    &AddSimulateCommand, &AddCompareCommand,
   };
   return factories;
 }

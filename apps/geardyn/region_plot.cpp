@@ -257,14 +257,32 @@ std::string RenderRegionSvg(const RegionPlotSpec& spec) {
       << LengthAttributes(markers[k]->text, kMarkerFont) << " class=\"marker-label\">"
       << EscapeSvgText(markers[k]->text) << "</text>\n";
   }
+  std::vector<const RegionPlotCurve*> legend;  // the first curve of each distinct label
   for (const RegionPlotCurve& c : spec.curves) {
+    if (!c.label.empty() &&
+        std::none_of(legend.begin(), legend.end(),
+                     [&](const RegionPlotCurve* l) { return l->label == c.label; })) {
+      legend.push_back(&c);
+    }
     if (c.x.empty()) continue;
-    s << "<" << (c.closed ? "polygon" : "polyline") << " fill=\"none\" stroke=\"black\" "
+    s << "<" << (c.closed ? "polygon" : "polyline") << " fill=\"none\" stroke=\""
+      << (c.colour.empty() ? "black" : EscapeSvgText(c.colour)) << "\" "
       << "stroke-width=\"1.5\" points=\"";
     for (std::size_t k = 0; k < c.x.size() && k < c.y.size(); ++k) {
       s << (k ? " " : "") << FormatTickNumber(sx(c.x[k])) << "," << FormatTickNumber(sy(c.y[k]));
     }
     s << "\"/>\n";
+  }
+  // Legend of the labelled curves (e.g. one colour per model level), top right inside the axes.
+  for (std::size_t k = 0; k < legend.size(); ++k) {
+    const double y = top + 16.0 + 16.0 * static_cast<double>(k);
+    const std::string colour = legend[k]->colour.empty() ? "black" : legend[k]->colour;
+    s << "<line x1=\"" << FormatTickNumber(right - 150.0) << "\" y1=\"" << FormatTickNumber(y - 4.0)
+      << "\" x2=\"" << FormatTickNumber(right - 126.0) << "\" y2=\"" << FormatTickNumber(y - 4.0)
+      << "\" stroke=\"" << EscapeSvgText(colour) << "\" stroke-width=\"2\"/><text x=\""
+      << FormatTickNumber(right - 120.0) << "\" y=\"" << FormatTickNumber(y)
+      << "\" font-size=\"12\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\">"
+      << EscapeSvgText(legend[k]->label) << "</text>\n";
   }
   LayOutRegionLabels(spec, sx, sy, TextBox{left, top, right, bottom}, s);
   s << "</svg>\n";

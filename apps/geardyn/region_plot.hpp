@@ -45,6 +45,8 @@ struct RegionPlotCurve {
   std::vector<double> x;
   std::vector<double> y;
   bool closed = false;
+  std::string colour;  ///< SVG stroke colour (empty: black)
+  std::string label;   ///< legend entry (empty: none; one entry per distinct label)
 };
 
 /// The plot. Grid arrays are row-major (index = iy·x_values.size() + ix).
