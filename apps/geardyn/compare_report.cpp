@@ -63,6 +63,7 @@ std::string Reference(const CompareResult& r, CompareAnalysis a) {
 // The summary numbers of one level (NaN where not available).
 struct LevelNumbers {
   double modes_max = kNaN;  // max |Δf/f| over matched modes
+  double modes_in_plane = kNaN, modes_out_of_plane = kNaN;
   int absent = -1;
   double floquet = kNaN;  // max|λ| − reference's
   double dte_max = kNaN, dte_rms = kNaN, peak_shift = kNaN;
@@ -74,6 +75,8 @@ LevelNumbers NumbersOf(const LevelComparison* c) {
   if (c->modes) {
     n.modes_max = c->modes->max_abs_relative_difference;
     n.absent = static_cast<int>(c->modes->matches.size()) - c->modes->num_matched;
+    n.modes_in_plane = c->modes_max_in_plane;
+    n.modes_out_of_plane = c->modes_max_out_of_plane;
   }
   if (c->floquet_difference) n.floquet = *c->floquet_difference;
   if (c->dte) {
@@ -504,13 +507,15 @@ std::string FormatCompareChartCsv(const CompareResult& r) {
 
 std::string FormatCompareVaryCsv(const std::string& key, const std::vector<CompareVaryPoint>& v) {
   std::ostringstream s;
-  s << "value,key,level,modes_max_abs_rel_diff,modes_absent,floquet_difference,dte_max_abs_diff,"
-       "dte_rms_diff,dte_peak_shift,modes_verdict,floquet_verdict,dte_verdict\n";
+  s << "value,key,level,modes_max_abs_rel_diff,modes_in_plane,modes_out_of_plane,modes_absent,"
+       "floquet_difference,dte_max_abs_diff,dte_rms_diff,dte_peak_shift,modes_verdict,"
+       "floquet_verdict,dte_verdict\n";
   const auto csv = [](double x) { return std::isfinite(x) ? Num(x, "%.10g") : "nan"; };
   for (const CompareVaryPoint& p : v) {
     for (const LevelComparison& c : p.result.comparisons) {
       const LevelNumbers n = NumbersOf(&c);
       s << Num(p.value, "%.10g") << "," << key << "," << c.level << "," << csv(n.modes_max) << ","
+        << csv(n.modes_in_plane) << "," << csv(n.modes_out_of_plane) << ","
         << (n.absent >= 0 ? std::to_string(n.absent) : "nan") << "," << csv(n.floquet) << ","
         << csv(n.dte_max) << "," << csv(n.dte_rms) << "," << csv(n.peak_shift) << ","
         << Verdict(&c, CompareAnalysis::kModes) << "," << Verdict(&c, CompareAnalysis::kFloquet)
@@ -532,6 +537,9 @@ json MakeCompareVaryReport(const std::string& key, const std::vector<CompareVary
         verdict[a == CompareAnalysis::kHb ? "dte" : ToString(a)] = x;
       levels.push_back({{"level", c.level},
                         {"modes_max_abs_relative_difference", Finite(n.modes_max)},
+                        {"modes_in_plane_max_abs_relative_difference", Finite(n.modes_in_plane)},
+                        {"modes_out_of_plane_max_abs_relative_difference",
+                         Finite(n.modes_out_of_plane)},
                         {"modes_absent", n.absent},
                         {"floquet_difference", Finite(n.floquet)},
                         {"dte_max_abs_difference", Finite(n.dte_max)},
@@ -560,12 +568,14 @@ std::string FormatCompareVaryText(const std::string& key, const std::vector<Comp
   std::ostringstream s;
   s << "compare over " << key << (v.empty() ? "" : ": " + v.front().result.scene) << "\n";
   s << Pad(key.substr(key.rfind('.') == std::string::npos ? 0 : key.rfind('.') + 1), 18)
-    << Pad("level", 19) << Pad("max|Δf/f|", 11) << Pad("absent", 8) << Pad("Δmax|λ|", 11)
+    << Pad("level", 19) << Pad("max|Δf/f|", 11) << Pad("in plane", 10) << Pad("axial/rock", 11)
+    << Pad("absent", 8) << Pad("Δmax|λ|", 11)
     << Pad("DTE max|Δ|", 12) << Pad("DTE RMS Δ", 11) << "peak shift\n";
   for (const CompareVaryPoint& p : v) {
     for (const LevelComparison& c : p.result.comparisons) {
       const LevelNumbers n = NumbersOf(&c);
       s << Pad(Num(p.value, "%.6g"), 18) << Pad(c.level, 19) << Pad(Pct(n.modes_max), 11)
+        << Pad(Pct(n.modes_in_plane), 10) << Pad(Pct(n.modes_out_of_plane), 11)
         << Pad(n.absent >= 0 ? std::to_string(n.absent) : "—", 8)
         << Pad(Num(n.floquet, "%+.2e"), 11) << Pad(Pct(n.dte_max), 12) << Pad(Pct(n.dte_rms), 11)
         << Pct(n.peak_shift) << "\n";
@@ -580,8 +590,9 @@ std::string RenderCompareVaryPlot(const std::string& key, const std::vector<Comp
   spec.title = "Model-level errors against the reference: " +
                (v.empty() ? std::string() : v.front().result.scene);
   spec.x_label = key;
-  PlotPanel modes, dte, absent;
-  modes.y_label = "max |Δf/f| of matched modes [%]";
+  PlotPanel modes, out_of_plane, dte, absent;
+  modes.y_label = "max |Δf/f|, rotational/translational modes [%]";
+  out_of_plane.y_label = "max |Δf/f|, axial/rocking modes [%]";
   dte.y_label = "DTE max |Δ RMS| [% of ref. peak]";
   absent.y_label = "absent modes [-]";
   std::vector<std::string> levels;
@@ -593,12 +604,16 @@ std::string RenderCompareVaryPlot(const std::string& key, const std::vector<Comp
     }
   }
   for (std::size_t i = 0; i < levels.size(); ++i) {
-    PlotSeries m{levels[i], {}, {}, false, PlotColour(i)}, d = m, a = m;
+    PlotSeries m{levels[i], {}, {}, false, PlotColour(i)};
+    PlotSeries o{levels[i], {}, {}, false, PlotColour(i)};
+    PlotSeries d{levels[i], {}, {}, false, PlotColour(i)}, a = d;
     bool any_reference = true;
     for (const CompareVaryPoint& p : v) {
       const LevelNumbers n = NumbersOf(ComparisonOf(p.result, levels[i]));
       m.x.push_back(p.value);
-      m.y.push_back(100.0 * n.modes_max);
+      m.y.push_back(100.0 * n.modes_in_plane);
+      o.x.push_back(p.value);
+      o.y.push_back(100.0 * n.modes_out_of_plane);
       d.x.push_back(p.value);
       d.y.push_back(100.0 * n.dte_max);
       a.x.push_back(p.value);
@@ -610,11 +625,19 @@ std::string RenderCompareVaryPlot(const std::string& key, const std::vector<Comp
                       });
     }
     if (any_reference) continue;  // the reference's own zero line says nothing
+    // A mark on every computed value (the lines only join them).
+    for (const auto& [panel, series] :
+         {std::pair<PlotPanel*, const PlotSeries*>{&modes, &m}, {&out_of_plane, &o}, {&dte, &d}}) {
+      for (std::size_t k = 0; k < series->x.size(); ++k) {
+        panel->markers.push_back({series->x[k], series->y[k], "", series->colour});
+      }
+    }
     modes.series.push_back(m);
+    out_of_plane.series.push_back(o);
     dte.series.push_back(d);
     absent.series.push_back(a);
   }
-  spec.panels = {modes, dte, absent};
+  spec.panels = {modes, out_of_plane, dte, absent};
   return RenderSvg(spec);
 }
 

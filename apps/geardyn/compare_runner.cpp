@@ -1,5 +1,6 @@
 #include "geardyn/compare_runner.hpp"
 
+#include <Eigen/QR>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include "geardyn/common/check.hpp"
 #include "geardyn/common/errors.hpp"
 #include "geardyn/hb_report.hpp"
+#include "geardyn/models/scene/mesh_model.hpp"
 #include "geardyn/models/system/scene_system.hpp"
 #include "geardyn/stability_chart_runner.hpp"
 #include "geardyn/system/mesh_core.hpp"
@@ -245,6 +247,77 @@ LevelDte TimeDomainDte(const SystemModel& model, int mesh, const std::vector<dou
   return out;
 }
 
+// The LTI level as the LTI models of the literature use it (Kahraman 1993; B–S §5.3: "the
+// excitation term independent of K_o(θ*)"): the mean operator K̄2, excited by the LOADED static
+// transmission error of the B–S model at the operating torque. With the mean stiffness alone and
+// the scene's ε (the unloaded, kinematic TE), an unmodified pair would have no excitation at all:
+// its whine comes from the stiffness variation under load, which the loaded STE carries. Per
+// mesh: a slow roll of the B–S model (SimulateQuasiStatic, kSamplesPerMesh samples per mesh
+// cycle over its period P) gives δ_η(θ) and the static force pair F(θ); the scalar TE
+// ε_η = δ_η − (K̄2⁺F)_η, ε_ζ = 0 (the scalar TE of B–S Eq. 42) makes the LTI model's static
+// deflection reproduce the loaded STE. The mesh then carries these as user [mesh.parameters]
+// (constant K̄2 channels, ε table), its modifications and errors being inside the loaded STE.
+// Returns nullopt (with the reason) where this cannot be done; the caller keeps the scene's lti.
+constexpr int kSamplesPerMesh = 256;
+constexpr std::int64_t kMaxLoadedSteMeshes = 64;
+
+std::optional<Scene> LtiWithLoadedSte(const Scene& scene, std::string* why) {
+  SceneSystemOptions o;
+  o.analysis = "compare (lti: loaded static TE of blankenship_singh)";
+  const SceneSystem bs = BuildSceneSystem(SceneAtLevel(scene, "blankenship_singh"), o);
+  const SystemModel& model = bs.model;
+  const std::int64_t period = model.period_meshes();
+  if (period > kMaxLoadedSteMeshes) {
+    *why = "the loaded static TE repeats over " + std::to_string(period) +
+           " mesh cycles (more than " + std::to_string(kMaxLoadedSteMeshes) + " are not rolled)";
+    return std::nullopt;
+  }
+  for (const SystemMesh& m : model.meshes()) {
+    if (m.phase_ratio != 1.0 || m.phase_offset != 0.0) {
+      *why = "mesh '" + m.name + "' runs at another mesh frequency or phase than the first (its "
+             "loaded STE is sampled on the system phase)";
+      return std::nullopt;
+    }
+  }
+  QuasiStaticOptions qs;
+  qs.samples_per_mesh = kSamplesPerMesh;
+  qs.check_next_cycle = false;
+  const QuasiStaticResult roll = SimulateQuasiStatic(model, qs);
+  if (!roll.summary.ok()) {
+    *why = "the slow roll of blankenship_singh did not succeed: " + roll.summary.message;
+    return std::nullopt;
+  }
+  Scene out = SceneAtLevel(scene, "lti");
+  for (int k = 0; k < model.num_meshes(); ++k) {
+    const SystemMesh& mesh = model.meshes()[k];
+    const QuasiStaticMesh& q = roll.meshes[k];
+    const Matrix2& K = mesh.mean_core_stiffness;  // K̄2 [[K, −Kh], [−Kh, Kμb²]]
+    const Eigen::CompleteOrthogonalDecomposition<Matrix2> pinv(K);
+    const int S = static_cast<int>(q.loaded_te.size());
+    MatrixX epsilon = MatrixX::Zero(2, S);
+    for (int s = 0; s < S; ++s) {
+      epsilon(0, s) = q.loaded_te(s) - pinv.solve(Vector2(q.force_pair.col(s)))(0);
+    }
+    auto it = std::find_if(out.meshes.begin(), out.meshes.end(),
+                           [&](const MeshDef& d) { return d.name == mesh.name; });
+    GEARDYN_DEMAND(it != out.meshes.end());
+    UserMeshParameters parameters;
+    parameters.stiffness = ConstantCoefficient(Vector3(K(0, 0), -K(0, 1), K(1, 1)));
+    // Its trigonometric interpolant with a quarter of the samples' harmonics: the table's linear
+    // interpolation has kinks whose 1/k² tail keeps the HB's H search from converging.
+    parameters.transmission_error = ToFourier(
+        TableCoefficient(epsilon, period), static_cast<int>(kSamplesPerMesh / 4 * period));
+    it->model.parameters = std::move(parameters);
+    it->model.stiffness_per_length.reset();
+    it->model.modifications = ToothModifications{};
+    ToothErrors no_errors;
+    no_errors.pinion_teeth = it->model.errors.pinion_teeth;
+    no_errors.gear_teeth = it->model.errors.gear_teeth;
+    it->model.errors = no_errors;
+  }
+  return out;
+}
+
 bool IsMultivalued(const LevelDte& d) {
   double peak = 0.0;
   for (std::size_t k = 0; k < d.rms_up.size(); ++k) {
@@ -323,6 +396,18 @@ void CompareModes(const LevelRun& run, const LevelRun* ref, const CompareSetting
   ModeMatchingOptions options;
   options.mac_threshold = settings.mac_threshold;
   c->modes = MatchModesByMac(reference, *run.modes, ref->mass, options);
+  c->modes_max_in_plane = c->modes_max_out_of_plane = 0.0;
+  for (const ModeMatch& m : c->modes->matches) {
+    if (m.other < 0 || !std::isfinite(m.relative_difference) ||
+        m.reference >= static_cast<int>(reference.labels.size())) {
+      continue;
+    }
+    const ModeType type = reference.labels[m.reference];
+    double& worst = type == ModeType::kAxial || type == ModeType::kRocking
+                        ? c->modes_max_out_of_plane
+                        : c->modes_max_in_plane;
+    worst = std::max(worst, std::abs(m.relative_difference));
+  }
   if (run.level == ref->level) {
     v = "reference";
     return;
@@ -842,7 +927,22 @@ CompareResult RunCompare(const Scene& scene, const CompareSettings& input,
       } else {
         std::optional<SceneSystem> forced;
         try {
-          forced = build(true, by_time);
+          if (level == "lti") {
+            std::string why;
+            if (std::optional<Scene> loaded = LtiWithLoadedSte(scene, &why)) {
+              SceneSystemOptions o;
+              o.analysis = "compare (lti)";
+              o.allow_contact_meshes = false;
+              forced = BuildSceneSystem(*loaded, o);
+              run.warnings.push_back(
+                  "excited by the loaded static TE of blankenship_singh at the operating "
+                  "torque (mean stiffness, scalar TE; Kahraman 1993)");
+            } else {
+              run.warnings.push_back("excited by the scene's unloaded TE only (" + why +
+                                     "): the stiffness variation under load is not in it");
+            }
+          }
+          if (!forced) forced = build(true, by_time);
         } catch (const InvalidInput& e) {
           GEARDYN_THROW_UNLESS(!levels_given, "--levels: the scene cannot be built at level '"
                                                   << level << "': " << e.what());

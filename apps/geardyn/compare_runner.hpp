@@ -127,6 +127,11 @@ struct DteDifference {
 struct LevelComparison {
   std::string level;
   std::optional<ModeMatching> modes;
+  /// max |Δf/f| of the matched modes whose reference type is in the plane of the gears
+  /// (rotational, translational) and out of it (axial, rocking) [-] (0 when none; NaN without
+  /// modes): the 4-DOF and torsional reductions act on these differently.
+  double modes_max_in_plane = std::numeric_limits<double>::quiet_NaN();
+  double modes_max_out_of_plane = std::numeric_limits<double>::quiet_NaN();
   std::optional<double> floquet_difference;  ///< max|λ| − reference's
   std::optional<DteDifference> dte;
   /// Chart: the fraction of grid points where both have a verdict and it is the reference's

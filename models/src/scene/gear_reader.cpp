@@ -37,14 +37,17 @@ void ReadHelix(const Fields& f, GearDef* g) {
   g->helix_angle = DegToRad(helix_deg);
 
   if (auto hand = f.OptString("hand")) {
-    if (helix_deg == 0.0) {
+    // An explicit helix_angle_deg = 0 with a hand is the spur limit of a helical pair (a sweep
+    // over β through 0, `geardyn compare --vary`): the hand is checked and has no effect. A hand
+    // on a gear without helix_angle_deg is an error (a spur gear has none).
+    if (helix_deg == 0.0 && f.Find("helix_angle_deg") == nullptr) {
       f.Fail("hand",
-             "must not be given for a spur gear (helix_angle_deg is 0), got \"" + *hand + "\"");
+             "must not be given for a spur gear (no helix_angle_deg), got \"" + *hand + "\"");
     }
     if (*hand == "right") {
-      g->hand = HelixHand::kRight;
+      g->hand = helix_deg == 0.0 ? HelixHand::kNone : HelixHand::kRight;
     } else if (*hand == "left") {
-      g->hand = HelixHand::kLeft;
+      g->hand = helix_deg == 0.0 ? HelixHand::kNone : HelixHand::kLeft;
     } else {
       const std::array<std::string_view, 2> hands = {"right", "left"};
       f.Fail("hand",
