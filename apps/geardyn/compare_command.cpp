@@ -167,6 +167,9 @@ Command AddCompareCommand(CLI::App& app) {
                   "harmonics H of the nonlinear harmonic balance (default 24)");
   cmd->add_option("--simulate-tolerance", opts->settings.simulate_tolerance,
                   "time domain: local relative error per step (default 1e-6)");
+  cmd->add_option("--steady-tolerance", opts->settings.steady_tolerance,
+                  "time domain: relative period-to-period change of a steady state (default "
+                  "1e-6)");
   cmd->add_option("--max-periods", opts->settings.max_periods,
                   "time domain: periods per speed before the point is not steady (default 3000)");
   cmd->add_option("--vary", opts->vary,

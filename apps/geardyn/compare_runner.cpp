@@ -195,6 +195,7 @@ LevelDte TimeDomainDte(const SystemModel& model, int mesh, const std::vector<dou
   TimeSweepOptions options;
   options.response.integration.relative_tolerance = settings.simulate_tolerance;
   options.response.steady.max_periods = settings.max_periods;
+  options.response.steady.tolerance = settings.steady_tolerance;
   options.response.steady.min_periods =
       std::min(options.response.steady.min_periods, settings.max_periods);
   options.response.integration.record_element_forces = false;
@@ -618,6 +619,10 @@ void ValidateCompareSettings(const CompareSettings& s) {
                        "--simulate-tolerance: the local relative error per step must be in "
                        "[1e-14, 1e-2], got "
                            << s.simulate_tolerance);
+  GEARDYN_THROW_UNLESS(std::isfinite(s.steady_tolerance) && s.steady_tolerance >= 1e-14 &&
+                           s.steady_tolerance <= 1,
+                       "--steady-tolerance: the period-to-period change must be in [1e-14, 1], got "
+                           << s.steady_tolerance);
   GEARDYN_THROW_UNLESS(s.max_periods >= 1 && s.max_periods <= 10000000,
                        "--max-periods: must be in [1, 10000000], got " << s.max_periods);
   GEARDYN_THROW_UNLESS(!s.analyses.empty(), "--analyses: nothing to run");

@@ -63,6 +63,7 @@ struct CompareSettings {
   int nonlinear_harmonics = 24;           ///< H of the nonlinear HB
   double simulate_tolerance = 1e-6;       ///< local relative error of the time integration
   int max_periods = 3000;                 ///< time domain: periods before not_converged
+  double steady_tolerance = 1e-6;  ///< time domain: relative period-to-period change of steady
   int threads = 0;                        ///< time domain: OpenMP threads (0: default)
   bool progress = false;                  ///< progress lines on the error stream
   /// Stability charts per level (with floquet): "path=lo:hi:n" of both axes, as
