@@ -515,10 +515,10 @@ TEST(MeshCoresTest, FiveDofKeepsOnlyTheLineOfActionTransmissionError) {
       std::complex<double>(-1e-6, 2e-6);
   const TransmissionErrorSidebands& sb = source.transmission_error_sidebands;
   const auto line = [&](int row, int i, double theta) {
-    return 2.0 * (sb.coefficients(row, i) *
-                  std::exp(std::complex<double>(
-                      0.0, sb.harmonics[static_cast<size_t>(i)] * theta / sb.period_meshes)))
-                     .real();
+    const double m = static_cast<double>(sb.harmonics[static_cast<size_t>(i)]);
+    const double p = static_cast<double>(sb.period_meshes);
+    return 2.0 *
+           (sb.coefficients(row, i) * std::exp(std::complex<double>(0.0, m * theta / p))).real();
   };
   const LinearMeshCore bs = MakeLinearMeshCore(source, MeshModelLevel::kBlankenshipSingh);
   const LinearMeshCore five = MakeLinearMeshCore(source, MeshModelLevel::kFiveDof);
