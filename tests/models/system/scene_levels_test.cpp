@@ -235,8 +235,9 @@ TEST(SceneLevelsTest, FiveDofKeepsOnlyTheLineOfActionErrorOfAHelicalTipRelief) {
                        kAssemblyTol * (K2 * Vector2(ea[0], 0.0)).norm());
   }
   EXPECT_GT(max_eta, 1e-7);  // a few µm of relief reach the line of action
-  // ε_ζ of the B–S level: a rotation of order relief / face width, well above round-off.
-  EXPECT_GT(max_zeta, 1e-6 * max_eta / bs_scene.meshes[0].geometry.face_width);
+  // ε_ζ of the B–S level: a rotation of the order of ε_η / face width (3.5e-4 rad here, where
+  // one relieved line carries a small share), far above round-off.
+  EXPECT_GT(max_zeta, 0.1 * max_eta / bs_scene.meshes[0].geometry.face_width);
   // Stiffness (and hence the modes) untouched.
   const VectorX la = MeanEigenvalues(bs.model);
   EXPECT_MATRIX_NEAR(MeanEigenvalues(fd.model), la, kAssemblyTol * la.cwiseAbs().maxCoeff());
