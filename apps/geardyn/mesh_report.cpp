@@ -56,7 +56,9 @@ void AppendParameters(const MeshParameters& p, MeshSamples* s) {
 
 // Samples a linear core: stiffness channels (K, K·h, K·μ·b²) from the core, ε from the exact
 // model te when given (contact lines), else from the core (user parameters).
-void SampleLinear(const LinearMeshCore& core, const TransmissionErrorModel* te,
+// scalar_te: the level keeps only ε_η (five_dof, B–S Eq. 42), so the exact ε_ζ of `te` is not
+// the core's.
+void SampleLinear(const LinearMeshCore& core, const TransmissionErrorModel* te, bool scalar_te,
                   const std::vector<double>& thetas, MeshSamples* s) {
   VectorX channels(LinearMeshCore::kNumStiffnessChannels);
   const double b = core.half_face_width();
@@ -67,7 +69,7 @@ void SampleLinear(const LinearMeshCore& core, const TransmissionErrorModel* te,
       const Vector2 eps =
           te != nullptr ? te->CalcTransmissionError(theta) : EvalTransmissionError(core, theta);
       s->te_eta.push_back(eps[0]);
-      s->te_zeta.push_back(eps[1]);
+      s->te_zeta.push_back(scalar_te ? 0.0 : eps[1]);
     }
   }
 }
@@ -196,7 +198,8 @@ json MakeMeshReport(const Scene& scene, const MeshSamplingOptions& options,
         [&](const auto& core) {
           using T = std::decay_t<decltype(core)>;
           if constexpr (std::is_same_v<T, LinearMeshCore>) {
-            SampleLinear(core, te ? &*te : nullptr, thetas, &s);
+            SampleLinear(core, te ? &*te : nullptr, mesh.model.level == MeshModelLevel::kFiveDof,
+                         thetas, &s);
           } else if constexpr (std::is_same_v<T, SliceMeshCore>) {
             SampleSlices(core, thetas, &s);
           } else {

@@ -11,6 +11,7 @@
 #include "geardyn/common/check.hpp"
 #include "geardyn/common/overloaded.hpp"
 #include "geardyn/common/units.hpp"
+#include "geardyn/models/mesh/mesh_jacobian.hpp"
 
 namespace geardyn {
 namespace {
@@ -117,6 +118,10 @@ const char* ToString(MeshModelLevel level) {
       return "slices";
     case MeshModelLevel::kBlankenshipSingh:
       return "blankenship_singh";
+    case MeshModelLevel::kBsProjected:
+      return "bs_projected";
+    case MeshModelLevel::kFiveDof:
+      return "five_dof";
     case MeshModelLevel::kCoupling4Dof:
       return "coupling_4dof";
     case MeshModelLevel::kMeanLti:
@@ -130,12 +135,62 @@ const char* ToString(MeshModelLevel level) {
 }
 
 std::optional<MeshModelLevel> ParseMeshModelLevel(std::string_view name) {
-  for (MeshModelLevel level : {MeshModelLevel::kNonlinearSlices, MeshModelLevel::kBlankenshipSingh,
-                               MeshModelLevel::kCoupling4Dof, MeshModelLevel::kMeanLti,
-                               MeshModelLevel::kTorsional, MeshModelLevel::kContact}) {
+  for (MeshModelLevel level :
+       {MeshModelLevel::kNonlinearSlices, MeshModelLevel::kBlankenshipSingh,
+        MeshModelLevel::kBsProjected, MeshModelLevel::kFiveDof, MeshModelLevel::kCoupling4Dof,
+        MeshModelLevel::kMeanLti, MeshModelLevel::kTorsional, MeshModelLevel::kContact}) {
     if (name == ToString(level)) return level;
   }
   return std::nullopt;
+}
+
+MeshCoreLevel CalcMeshCoreLevel(MeshModelLevel level) {
+  switch (level) {
+    case MeshModelLevel::kCoupling4Dof:
+      return MeshCoreLevel::kCoupling4Dof;
+    case MeshModelLevel::kTorsional:
+      return MeshCoreLevel::kTorsional;
+    case MeshModelLevel::kBlankenshipSingh:
+    case MeshModelLevel::kBsProjected:
+    case MeshModelLevel::kFiveDof:
+    case MeshModelLevel::kMeanLti:
+    case MeshModelLevel::kNonlinearSlices:
+    case MeshModelLevel::kContact:
+      break;
+  }
+  return MeshCoreLevel::kBlankenshipSingh;
+}
+
+Matrix2x12 CalcModelLevelJacobian(MeshModelLevel level, const MeshFrame& frame,
+                                  double half_face_width) {
+  switch (level) {
+    case MeshModelLevel::kBsProjected:
+      return CalcBsProjectedJacobian(frame, half_face_width);
+    case MeshModelLevel::kTorsional:
+      return CalcLevelJacobian(MeshCoreLevel::kTorsional, CalcMeshJacobian(frame));
+    case MeshModelLevel::kBlankenshipSingh:
+    case MeshModelLevel::kFiveDof:
+    case MeshModelLevel::kCoupling4Dof:
+    case MeshModelLevel::kMeanLti:
+    case MeshModelLevel::kNonlinearSlices:
+    case MeshModelLevel::kContact:
+      break;
+  }
+  return CalcMeshJacobian(frame);
+}
+
+LinearMeshCore MakeScalarTransmissionErrorCore(const LinearMeshCore& core) {
+  if (!core.has_transmission_error()) return core;
+  std::optional<Coefficient> te;
+  if (core.transmission_error()) {
+    // Keep channel 0 (ε_η), zero channel 1 (ε_ζ): B–S Eq. (42).
+    const MatrixX keep_eta = (MatrixX(2, 2) << 1.0, 0.0, 0.0, 0.0).finished();
+    te = MapChannels(*core.transmission_error(), keep_eta);
+  }
+  TransmissionErrorSidebands sidebands = core.sidebands();
+  if (!sidebands.empty()) sidebands.coefficients.row(1).setZero();
+  return LinearMeshCore(core.level(), core.stiffness(), core.half_face_width(), std::move(te),
+                        core.damping(), core.is_mean_lti(), std::move(sidebands));
 }
 
 bool SliceCoefficientOptions::IsValid(std::string* why) const {
@@ -154,7 +209,6 @@ bool SliceCoefficientOptions::IsValid(std::string* why) const {
 
 LinearMeshCore MakeLinearMeshCore(const MeshCoreSource& source, MeshModelLevel level,
                                   const MeshCoefficientOptions& options) {
-  MeshCoreLevel core_level = MeshCoreLevel::kBlankenshipSingh;
   switch (level) {
     case MeshModelLevel::kNonlinearSlices:
       GEARDYN_THROW_UNLESS(false,
@@ -167,20 +221,19 @@ LinearMeshCore MakeLinearMeshCore(const MeshCoreSource& source, MeshModelLevel l
                            "NonlinearMeshCore, built by BuildMeshCore)");
       break;
     case MeshModelLevel::kBlankenshipSingh:
+    case MeshModelLevel::kBsProjected:
+    case MeshModelLevel::kFiveDof:
     case MeshModelLevel::kMeanLti:
-      core_level = MeshCoreLevel::kBlankenshipSingh;
-      break;
     case MeshModelLevel::kCoupling4Dof:
-      core_level = MeshCoreLevel::kCoupling4Dof;
-      break;
     case MeshModelLevel::kTorsional:
-      core_level = MeshCoreLevel::kTorsional;
       break;
   }
+  const MeshCoreLevel core_level = CalcMeshCoreLevel(level);
   LinearMeshCore core(core_level, MakeMeshCoefficient(source.contact_lines, options),
                       source.contact_lines.half_face_width(), source.transmission_error,
                       source.damping, /*mean_lti=*/false, source.transmission_error_sidebands);
   if (level == MeshModelLevel::kMeanLti) return MakeMeanLinearMeshCore(core);
+  if (level == MeshModelLevel::kFiveDof) return MakeScalarTransmissionErrorCore(core);
   return core;
 }
 

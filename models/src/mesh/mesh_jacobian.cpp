@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/models/mesh/stiffness_core.hpp"
 
 namespace geardyn {
 
@@ -45,6 +46,12 @@ Matrix6x12 CalcBsRelativeDisplacementMap(const MeshFrame& frame, double half_fac
   T.block<1, 3>(5, 3) = s * a_i * frame.w.transpose();
   T.block<1, 3>(5, 9) = s * mate * a_j * frame.w.transpose();
   return T;
+}
+
+Matrix2x12 CalcBsProjectedJacobian(const MeshFrame& frame, double half_face_width) {
+  const Matrix6x12 T = CalcBsRelativeDisplacementMap(frame, half_face_width);
+  const double psi = frame.signed_helix_angle;
+  return CalcBsDeflectionProjection(std::cos(psi), std::sin(psi), half_face_width) * T;
 }
 
 }  // namespace geardyn

@@ -47,21 +47,6 @@ std::set<std::string, std::less<>> ReachableWithout(const Scene& scene, const st
   return seen;
 }
 
-MeshCoreLevel CoreLevel(MeshModelLevel level) {
-  switch (level) {
-    case MeshModelLevel::kCoupling4Dof:
-      return MeshCoreLevel::kCoupling4Dof;
-    case MeshModelLevel::kTorsional:
-      return MeshCoreLevel::kTorsional;
-    case MeshModelLevel::kBlankenshipSingh:
-    case MeshModelLevel::kMeanLti:
-    case MeshModelLevel::kNonlinearSlices:
-    case MeshModelLevel::kContact:
-      break;
-  }
-  return MeshCoreLevel::kBlankenshipSingh;
-}
-
 // The level's core on the user's channels.
 LinearMeshCore MakeUserCore(const MeshDef& mesh) {
   const MeshModelDef& model = mesh.model;
@@ -75,9 +60,12 @@ LinearMeshCore MakeUserCore(const MeshDef& mesh) {
                                  "stiffness_per_length, modifications and errors are not used "
                                  "with them");
   const UserMeshParameters& p = *model.parameters;
-  const LinearMeshCore core(CoreLevel(model.level), p.stiffness, 0.5 * mesh.geometry.face_width,
-                            p.transmission_error, model.damping);
-  return model.level == MeshModelLevel::kMeanLti ? MakeMeanLinearMeshCore(core) : core;
+  const LinearMeshCore core(CalcMeshCoreLevel(model.level), p.stiffness,
+                            0.5 * mesh.geometry.face_width, p.transmission_error, model.damping);
+  if (model.level == MeshModelLevel::kMeanLti) return MakeMeanLinearMeshCore(core);
+  // five_dof: B–S's scalar transmission error (Eq. 42), the user's te_zeta dropped.
+  if (model.level == MeshModelLevel::kFiveDof) return MakeScalarTransmissionErrorCore(core);
+  return core;
 }
 
 // The coefficient keys the scene gave that cannot change the core (they were silently ignored):

@@ -21,9 +21,10 @@ constexpr int kMaxTableSamples = 1 << 20;
 /// steel pairs have about 2e10 N/m², plastics a few 1e8 N/m²).
 constexpr double kMinStiffnessPerLength = 1e6;
 
-constexpr std::array<MeshModelLevel, 6> kLevels = {
-    MeshModelLevel::kBlankenshipSingh, MeshModelLevel::kCoupling4Dof,    MeshModelLevel::kMeanLti,
-    MeshModelLevel::kTorsional,        MeshModelLevel::kNonlinearSlices, MeshModelLevel::kContact};
+constexpr std::array<MeshModelLevel, 8> kLevels = {
+    MeshModelLevel::kBlankenshipSingh, MeshModelLevel::kBsProjected, MeshModelLevel::kFiveDof,
+    MeshModelLevel::kCoupling4Dof,     MeshModelLevel::kMeanLti,     MeshModelLevel::kTorsional,
+    MeshModelLevel::kNonlinearSlices,  MeshModelLevel::kContact};
 
 struct FormName {
   std::string_view name;

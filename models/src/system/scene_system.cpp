@@ -344,10 +344,12 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
     if (contact) {
       built.core = BuildContactMeshCore(scene, m, frame);
     }
-    Matrix2x12 G = CalcMeshJacobian(frame);
-    if (const auto* linear = std::get_if<LinearMeshCore>(&built.core)) {
-      G = CalcLevelJacobian(linear->level(), G);
-    }
+    // The level's G: the exact G, its θz columns (torsional) or B–S's projected-arm G_BS = P T
+    // (bs_projected, with the core's half face width b).
+    const auto* linear = std::get_if<LinearMeshCore>(&built.core);
+    const Matrix2x12 G = CalcModelLevelJacobian(
+        m.model.level, frame,
+        linear != nullptr ? linear->half_face_width() : 0.5 * m.geometry.face_width);
     double ratio = 1.0;
     try {
       const double f = scene.MeshFrequencyHz(m);

@@ -11,6 +11,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <functional>
 #include <limits>
@@ -465,7 +466,8 @@ TEST(MeshCoresTest, MakeMeshCoreBuildsEveryLevelFromTheSameSource) {
   source.damping = MeshDamping::FromRatio(0.07);
   for (MeshModelLevel level :
        {MeshModelLevel::kNonlinearSlices, MeshModelLevel::kBlankenshipSingh,
-        MeshModelLevel::kCoupling4Dof, MeshModelLevel::kMeanLti, MeshModelLevel::kTorsional}) {
+        MeshModelLevel::kBsProjected, MeshModelLevel::kFiveDof, MeshModelLevel::kCoupling4Dof,
+        MeshModelLevel::kMeanLti, MeshModelLevel::kTorsional}) {
     EXPECT_EQ(ParseMeshModelLevel(ToString(level)), level);
     MeshCoreOptions options;
     options.level = level;
@@ -491,6 +493,68 @@ TEST(MeshCoresTest, MakeMeshCoreBuildsEveryLevelFromTheSameSource) {
       ResolveDampingCoefficient(MakeLinearMeshCore(source, MeshModelLevel::kBlankenshipSingh), m_e);
   const double c_slices = ResolveDampingCoefficient(MakeSliceMeshCore(source, 16), m_e);
   EXPECT_NEAR(c_linear, c_slices, 1e-4 * c_linear);
+}
+
+// five_dof (B–S Eq. 42): the B–S core with ε_ζ ≡ 0 — the given ε_η series and sideband lines
+// kept, the ε_ζ ones dropped; bs_projected: the B–S core itself (its difference is G's).
+TEST(MeshCoresTest, FiveDofKeepsOnlyTheLineOfActionTransmissionError) {
+  MeshCoreSource source = MakeSource({"helical", true, 1, false});
+  source.damping = MeshDamping::FromCoefficient(250.0);
+  // ε_η = −3e-6 + 2 Re(c e^{iθ}), ε_ζ = 1e-5 + 2 Re(d e^{2iθ}).
+  const std::complex<double> c_eta(1e-6, 0.5e-6), d_zeta(0.0, 2e-5);
+  MatrixXc te_h = MatrixXc::Zero(2, 2);
+  te_h(0, 0) = c_eta;
+  te_h(1, 1) = d_zeta;
+  source.transmission_error = FourierCoefficient(Vector2(-3e-6, 1e-5), te_h);
+  // Two lines over P_s = 7 mesh cycles (m = 3 and 5: not on a stiffness harmonic).
+  source.transmission_error_sidebands.period_meshes = 7;
+  source.transmission_error_sidebands.harmonics = {3, 5};
+  source.transmission_error_sidebands.coefficients = MatrixXc(2, 2);
+  source.transmission_error_sidebands.coefficients << std::complex<double>(2e-7, -1e-7),
+      std::complex<double>(0.0, 3e-7), std::complex<double>(4e-6, 0.0),
+      std::complex<double>(-1e-6, 2e-6);
+  const TransmissionErrorSidebands& sb = source.transmission_error_sidebands;
+  const auto line = [&](int row, int i, double theta) {
+    const double m = static_cast<double>(sb.harmonics[static_cast<size_t>(i)]);
+    const double p = static_cast<double>(sb.period_meshes);
+    return 2.0 *
+           (sb.coefficients(row, i) * std::exp(std::complex<double>(0.0, m * theta / p))).real();
+  };
+  const LinearMeshCore bs = MakeLinearMeshCore(source, MeshModelLevel::kBlankenshipSingh);
+  const LinearMeshCore five = MakeLinearMeshCore(source, MeshModelLevel::kFiveDof);
+  const LinearMeshCore projected = MakeLinearMeshCore(source, MeshModelLevel::kBsProjected);
+  for (const LinearMeshCore* core : {&five, &projected}) {
+    EXPECT_EQ(core->level(), MeshCoreLevel::kBlankenshipSingh);
+    EXPECT_FALSE(core->is_mean_lti());
+    EXPECT_EQ(core->half_face_width(), bs.half_face_width());
+    EXPECT_EQ(core->damping().value, 250.0);
+  }
+  for (double theta : {0.0, 0.3, 2.0, 5.1, 17.0, 40.0}) {
+    EXPECT_TRUE(
+        test::CompareMatrices(EvalStiffnessCore(five, theta), EvalStiffnessCore(bs, theta), 0.0));
+    EXPECT_TRUE(test::CompareMatrices(EvalStiffnessCore(projected, theta),
+                                      EvalStiffnessCore(bs, theta), 0.0));
+    const double eta = -3e-6 + 2.0 * (c_eta * std::exp(std::complex<double>(0.0, theta))).real() +
+                       line(0, 0, theta) + line(0, 1, theta);
+    const double zeta = 1e-5 +
+                        2.0 * (d_zeta * std::exp(std::complex<double>(0.0, 2.0 * theta))).real() +
+                        line(1, 0, theta) + line(1, 1, theta);
+    const Vector2 e_bs = EvalTransmissionError(bs, theta);
+    const Vector2 e_five = EvalTransmissionError(five, theta);
+    EXPECT_NEAR(e_bs[0], eta, 1e-18);
+    EXPECT_NEAR(e_bs[1], zeta, 1e-17);
+    EXPECT_NEAR(e_five[0], eta, 1e-18);
+    EXPECT_EQ(e_five[1], 0.0);
+    EXPECT_TRUE(test::CompareMatrices(EvalTransmissionError(projected, theta), e_bs, 0.0));
+  }
+  // Without a transmission error the scalar form is the core itself.
+  source.transmission_error.reset();
+  source.transmission_error_sidebands = {};
+  const LinearMeshCore plain = MakeLinearMeshCore(source, MeshModelLevel::kFiveDof);
+  EXPECT_FALSE(plain.has_transmission_error());
+  // The mean-LTI flag survives MakeScalarTransmissionErrorCore.
+  const LinearMeshCore lti = MakeLinearMeshCore(source, MeshModelLevel::kMeanLti);
+  EXPECT_TRUE(MakeScalarTransmissionErrorCore(lti).is_mean_lti());
 }
 
 TEST(MeshCoresTest, SliceCoefficientForms) {

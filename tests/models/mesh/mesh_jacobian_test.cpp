@@ -170,6 +170,53 @@ TEST_P(MeshJacobianSceneTest, BsScaledCoordinatesReproduceGUpToTheDocumentedArmT
   }
 }
 
+// CalcBsProjectedJacobian (model = "bs_projected") is G minus the θ_u arm terms (closed form
+// from the frame's vectors), and loads a rigid motion only through them: common translations, the
+// conjugate rotation and common rotations with u·ω = 0 deflect nothing; a common rotation about
+// u gives −s (sin ψ C·v − cos ψ C·w) ω_u, C = c_j − c_i (derived in mesh_jacobian.hpp).
+TEST_P(MeshJacobianSceneTest, BsProjectedJacobianLoadsOnlyTheDerivedRigidMotions) {
+  const MeshPlacement& p = GetParam().placement;
+  const MeshFrame f = CalcMeshFrame(p);
+  const double b = 0.009;
+  const Matrix2x12 G = CalcMeshJacobian(f);
+  const Matrix2x12 G_bs = CalcBsProjectedJacobian(f, b);
+  const double s = f.drive_sign;
+  const double sin_psi = std::sin(f.signed_helix_angle);
+  const double cos_psi = std::cos(f.signed_helix_angle);
+  const auto arm = [&](const Vector3& r) { return sin_psi * r.dot(f.v) - cos_psi * r.dot(f.w); };
+  Matrix2x12 expected = G;
+  expected.block<1, 3>(0, 3) -= s * arm(f.pinion_lever_arm) * f.u.transpose();
+  expected.block<1, 3>(0, 9) += s * arm(f.gear_lever_arm) * f.u.transpose();
+  EXPECT_MATRIX_NEAR(G_bs, expected, kAlgebraTol);
+  // b cancels in P T.
+  EXPECT_MATRIX_NEAR(CalcBsProjectedJacobian(f, 0.1), G_bs, kAlgebraTol);
+
+  const double scale = G.cwiseAbs().maxCoeff();
+  const Vector3 t(0.3, -0.7, 0.2);
+  Vector12 q;
+  q << t, Vector3::Zero(), t, Vector3::Zero();
+  EXPECT_LE((G_bs * q).norm(), kAlgebraTol * scale * q.norm());
+  q.setZero();
+  q(5) = 1.0 / p.pinion_base_radius;
+  q(11) = (p.internal ? 1.0 : -1.0) / p.gear_base_radius;
+  EXPECT_LE((G_bs * q).norm(), kAlgebraTol * scale * q.norm());
+  const Vector3 C = f.gear_center - f.pinion_center;
+  const double u_load = -s * (sin_psi * C.dot(f.v) - cos_psi * C.dot(f.w));
+  for (const Vector3& omega : {Vector3(0.0, 0.0, 1.0), Vector3(f.v), Vector3(f.v - 0.4 * f.w),
+                               Vector3(f.u), Vector3(0.3, -0.5, 0.8)}) {
+    for (const Vector3& point :
+         {Vector3(f.pinion_center), Vector3(f.reference_point), Vector3(0.4, 0.9, -0.6)}) {
+      q = CommonRotation(f, omega, point);
+      EXPECT_NEAR((G_bs * q)(0), u_load * f.u.dot(omega), kAlgebraTol * scale * q.norm())
+          << "omega = " << omega.transpose() << ", point = " << point.transpose();
+      EXPECT_NEAR((G_bs * q)(1), 0.0, kAlgebraTol * scale * q.norm());
+    }
+  }
+  if (f.base_helix_angle != 0.0) {
+    EXPECT_GT(std::abs(u_load), 1e-3 * C.norm());  // a helical pair's tilt about u is loaded
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Scenes, MeshJacobianSceneTest, ::testing::ValuesIn(AllScenes()),
                          [](const ::testing::TestParamInfo<Scene>& param_info) {
                            return param_info.param.name;

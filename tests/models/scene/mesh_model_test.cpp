@@ -258,11 +258,51 @@ te_zeta = [0, 1e-5, 0, 0, 0]
   }
 }
 
+TEST(MeshModelReaderTest, ReadsTheTwoBlankenshipSinghForms) {
+  EXPECT_EQ(Parse(Pair("model = \"bs_projected\"\n")).meshes[0].model.level,
+            MeshModelLevel::kBsProjected);
+  EXPECT_EQ(Parse(Pair("model = \"five_dof\"\n")).meshes[0].model.level, MeshModelLevel::kFiveDof);
+  EXPECT_EQ(Parse(Pair(), {"mesh.pinion-wheel.model=five_dof"}).meshes[0].model.level,
+            MeshModelLevel::kFiveDof);
+  EXPECT_EQ(Parse(Pair(), {"mesh.pinion-wheel.model=bs_projected"}).meshes[0].model.level,
+            MeshModelLevel::kBsProjected);
+  EXPECT_THROWS_MESSAGE(Parse(Pair("model = \"five_dofs\"\n")), SceneError,
+                        "unknown model 'five_dofs' \\(did you mean 'five_dof'\\?\\); models: "
+                        "blankenship_singh, bs_projected, five_dof, coupling_4dof");
+}
+
+// five_dof on user tables: B–S's scalar transmission error, te_zeta dropped and te_eta kept.
+TEST(BuildMeshCoreTest, FiveDofDropsTheUserRockingTransmissionError) {
+  const std::string params = R"([mesh.parameters]
+form = "fourier"
+stiffness = [4e8, 5e7, -3e7]
+load_centre = [1e-3, 2e-4, 0]
+te_eta = [2e-6, 0, 1e-6]
+te_zeta = [0, 1e-5, 0]
+)";
+  const Scene bs = Parse(Pair("", params));
+  const Scene five = Parse(Pair("model = \"five_dof\"\n", params));
+  const LinearMeshCore a = Linear(BuildMeshCore(bs, bs.meshes[0]));
+  const LinearMeshCore b = Linear(BuildMeshCore(five, five.meshes[0]));
+  EXPECT_EQ(b.level(), MeshCoreLevel::kBlankenshipSingh);
+  for (const double th : {0.0, 0.3, 1.7, 4.0}) {
+    EXPECT_TRUE(EvalStiffnessCore(b, th).isApprox(EvalStiffnessCore(a, th), 0.0));
+    const Vector2 ea = EvalTransmissionError(a, th);
+    const Vector2 eb = EvalTransmissionError(b, th);
+    EXPECT_NEAR(ea[0], 2e-6 + 1e-6 * std::sin(th), 1e-18);
+    EXPECT_NEAR(ea[1], 1e-5 * std::cos(th), 1e-18);
+    EXPECT_EQ(eb[0], ea[0]);
+    EXPECT_EQ(eb[1], 0.0);
+  }
+}
+
 // --- BuildMeshCore ------------------------------------------------------------------------------
 
 TEST(BuildMeshCoreTest, EachLevelGivesItsCore) {
   const std::vector<std::pair<std::string, MeshCoreLevel>> linear = {
       {"blankenship_singh", MeshCoreLevel::kBlankenshipSingh},
+      {"bs_projected", MeshCoreLevel::kBlankenshipSingh},
+      {"five_dof", MeshCoreLevel::kBlankenshipSingh},
       {"coupling_4dof", MeshCoreLevel::kCoupling4Dof},
       {"torsional", MeshCoreLevel::kTorsional},
       {"lti", MeshCoreLevel::kBlankenshipSingh}};

@@ -35,7 +35,8 @@ void AddMeshModelCases(const std::string& base, const std::string& helical,
   // --- [[mesh]] keys ---
   add("MeshUnknownModel", mesh("model = \"coupling4\"\n"), "model = \"coupling4\"",
       R"(^t\.toml:{line}: mesh\.pinion-wheel\.model: unknown model 'coupling4'; models: )"
-      R"(blankenship_singh, coupling_4dof, lti, torsional, slices, contact$)");
+      R"(blankenship_singh, bs_projected, five_dof, coupling_4dof, lti, torsional, slices, )"
+      R"(contact$)");
   add("MeshMisspeltModel", mesh("model = \"torsinal\"\n"), "model = \"torsinal\"",
       R"(^t\.toml:{line}: mesh\.pinion-wheel\.model: unknown model 'torsinal' \(did you mean )"
       R"('torsional'\?\); models: )");

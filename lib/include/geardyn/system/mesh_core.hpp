@@ -56,6 +56,10 @@ namespace geardyn {
 
 /// @brief The shape of a linear mesh core (spec 01 §5); all levels share the mesh Jacobian G.
 ///
+/// The shape only: the model levels of geardyn::models that differ from B–S's in geometry or in
+/// the transmission error ("bs_projected": B–S's projected-arm G; "five_dof": ε_ζ ≡ 0) carry
+/// kBlankenshipSingh (MeshModelLevel, mesh_cores.hpp).
+///
 /// * kBlankenshipSingh — K2 = K [[1, −h], [−h, μ b²]]: five coupled DOF (B–S Eq. 41).
 /// * kCoupling4Dof — κ = 0 and the μ term dropped: K2 = K diag(1, 0), rank 1 (Kiyono et al. 1978,
 ///   Küçükay 1984).

@@ -14,14 +14,24 @@
 /// * StiffnessPerUnitLength — a given constant k [N/m²].
 /// * StiffnessProfile — k(r) along the path of contact (contact_lines.hpp).
 ///
-/// **Levels → forms.**
-/// | MeshModelLevel | core |
-/// |---|---|
-/// | kBlankenshipSingh | LinearMeshCore(kBlankenshipSingh), (K, K·h, K·μ·b²)(θ)
-/// (MakeMeshCoefficient) | | kCoupling4Dof | LinearMeshCore(kCoupling4Dof), the same channels | |
-/// kMeanLti | MakeMeanLinearMeshCore of the kBlankenshipSingh core (exact channel means) | |
-/// kTorsional | LinearMeshCore(kTorsional), the same channels (with CalcLevelJacobian's G) | |
-/// kNonlinearSlices | SliceMeshCore from the contact lines cut into σ-bands |
+/// **Levels → forms.** Every linear level's core comes from the same channels; G is the mesh
+/// Jacobian the level is assembled with (CalcModelLevelJacobian).
+/// * kBlankenshipSingh — LinearMeshCore(kBlankenshipSingh), (K, K·h, K·μ·b²)(θ)
+///   (MakeMeshCoefficient) and (ε_η, ε_ζ)(θ); the exact G (CalcMeshJacobian).
+/// * kBsProjected — the kBlankenshipSingh core on B–S's G_BS = P T (CalcBsProjectedJacobian).
+/// * kFiveDof — the kBlankenshipSingh core with ε_ζ ≡ 0 (MakeScalarTransmissionErrorCore); the
+///   exact G.
+/// * kCoupling4Dof — LinearMeshCore(kCoupling4Dof), the same channels; the exact G.
+/// * kMeanLti — MakeMeanLinearMeshCore of the kBlankenshipSingh core (exact channel means); the
+///   exact G.
+/// * kTorsional — LinearMeshCore(kTorsional), the same channels; CalcLevelJacobian's θz columns.
+/// * kNonlinearSlices — SliceMeshCore from the contact lines cut into σ-bands; the exact G.
+///
+/// kBsProjected equals kBlankenshipSingh exactly for spur gears with p0 in the centres' plane
+/// (G_BS = G, mesh_jacobian.hpp). kFiveDof equals it exactly whenever ε_ζ ≡ 0: no modification
+/// or error, or a separation uniform across the face (a spur pair's profile relief, pitch
+/// deviations, a runout); a helical pair's tip relief or lead crowning, or a lead slope, gives
+/// ε_ζ ≠ 0.
 ///
 /// **Slices** (spec 01 §4.4). The σ range of the zone of action, [σ_min, σ_max] =
 /// ContactLineModel::SigmaRange() (width g_α|sin β_b| + B cos β_b), is cut into N equal bands;
@@ -47,6 +57,7 @@
 #include "geardyn/models/gear/gear_geometry.hpp"
 #include "geardyn/models/gear/iso_stiffness.hpp"
 #include "geardyn/models/mesh/contact_lines.hpp"
+#include "geardyn/models/mesh/mesh_frame.hpp"
 #include "geardyn/system/coefficient.hpp"
 #include "geardyn/system/mesh_core.hpp"
 
@@ -100,8 +111,16 @@ MeshCoreSource MakeMeshCoreSource(const GearPairGeometry& geometry,
 /// @brief The levels of spec 01 §5 a user can ask for (the linear ones and the slice form).
 enum class MeshModelLevel {
   kNonlinearSlices,   ///< SliceMeshCore
-  kBlankenshipSingh,  ///< LTV 6-DOF (B–S Eq. 41)
-  kCoupling4Dof,      ///< LTV 4-DOF coupling (κ = 0, μ dropped)
+  kBlankenshipSingh,  ///< LTV 6-DOF (B–S Eq. 41) on the exact mesh Jacobian G
+  /// B–S's own projected-arm form of the LTV 6-DOF model: the kBlankenshipSingh core on
+  /// G_BS = P T (B–S Eqs. 22, 24, 25, 41; CalcBsProjectedJacobian): moment arms measured by their
+  /// projection on u, which drops G's θ_u terms of a helical pair (mesh_jacobian.hpp).
+  kBsProjected,
+  /// B–S §5.3's five-DOF form (Eqs. 41, 42): the kBlankenshipSingh core (κ(θ), μ(θ) kept, W
+  /// constant, no friction) on the exact G with the scalar transmission error: ε_ζ ≡ 0
+  /// (MakeScalarTransmissionErrorCore).
+  kFiveDof,
+  kCoupling4Dof,  ///< LTV 4-DOF coupling (κ = 0, μ dropped)
   kMeanLti,  ///< LTI: mean K̄2 of the B–S core, ε(θ) kept (for the LTI of another shape, apply
              ///< MakeMeanLinearMeshCore to that level's core)
   kTorsional,  ///< torsional SDOF
@@ -110,11 +129,36 @@ enum class MeshModelLevel {
   kContact,
 };
 
-/// Name of a level: "slices", "blankenship_singh", "coupling_4dof", "lti", "torsional",
-/// "contact".
+/// Name of a level: "slices", "blankenship_singh", "bs_projected", "five_dof", "coupling_4dof",
+/// "lti", "torsional", "contact".
 const char* ToString(MeshModelLevel level);
 /// The level named `name` (as ToString), or nullopt.
 std::optional<MeshModelLevel> ParseMeshModelLevel(std::string_view name);
+
+/// @brief The shape of the 2×2 core of a level (lib's MeshCoreLevel): kCoupling4Dof and
+/// kTorsional their own, every other level (kBsProjected and kFiveDof included: the same K2)
+/// kBlankenshipSingh.
+MeshCoreLevel CalcMeshCoreLevel(MeshModelLevel level);
+
+/// @brief The mesh Jacobian G (2×12) a level is assembled with, in `frame`:
+/// * kBsProjected — B–S's projected G_BS = P T (CalcBsProjectedJacobian(frame, b));
+/// * kTorsional — CalcLevelJacobian(MeshCoreLevel::kTorsional, CalcMeshJacobian(frame));
+/// * every other level — the exact CalcMeshJacobian(frame).
+/// @param[in] level model level.
+/// @param[in] frame mesh frame from CalcMeshFrame [m, -].
+/// @param[in] half_face_width b > 0 [m] of the level's core (read for kBsProjected only).
+/// @return G (2×12) [-, m].
+/// @throws InvalidInput naming half_face_width (kBsProjected, b not positive and finite).
+Matrix2x12 CalcModelLevelJacobian(MeshModelLevel level, const MeshFrame& frame,
+                                  double half_face_width);
+
+/// @brief The core with B–S's scalar transmission error (B–S Eq. 42, the five-DOF form of §5.3):
+/// the ε_ζ channel of the transmission-error coefficient and the ε_ζ row of the sidebands set to
+/// zero, the ε_η channel, the stiffness, level, b, damping and mean-LTI flag kept. The load is
+/// then Gᵀ K2 [ε_η, 0]ᵀ: the line-of-action error still loads the rocking DOF through −K h.
+/// @param[in] core any linear core.
+/// @return the same core with ε_ζ ≡ 0 (the core itself when it has no transmission error).
+LinearMeshCore MakeScalarTransmissionErrorCore(const LinearMeshCore& core);
 
 /// @brief Options of the slice coefficients k_s(θ) (and e_s(θ)).
 struct SliceCoefficientOptions {

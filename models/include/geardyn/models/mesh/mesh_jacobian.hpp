@@ -59,4 +59,24 @@ Matrix2x12 CalcMeshJacobian(const MeshFrame& frame);
 /// @throws InvalidInput when half_face_width is not positive and finite.
 Matrix6x12 CalcBsRelativeDisplacementMap(const MeshFrame& frame, double half_face_width);
 
+/// @brief B–S's projected-arm mesh Jacobian G_BS = P T (2×12): [δ_η, δ_ζ]ᵀ as B–S's
+/// K_o (Eq. 41b) sees them, T = CalcBsRelativeDisplacementMap(frame, b) and
+/// P = CalcBsDeflectionProjection(cos ψ, sin ψ, b) with ψ = frame.signed_helix_angle
+/// (stiffness_core.hpp), so that (P T)ᵀ K2 (P T) = Tᵀ K_o T.
+///
+/// Row 1 (δ_ζ) equals G's. Row 0 differs from G's by the θ_u terms above (with s = drive_sign):
+/// G − G_BS has row 0 = s (sin ψ r_i·v − cos ψ r_i·w) uᵀ on θ_i and
+/// −s (sin ψ r_j·v − cos ψ r_j·w) uᵀ on θ_j, zero for ψ = 0 with p0 in the centres' plane.
+/// Rigid motions: G annihilates every rigid motion of the pair, so G_BS q = −(G − G_BS) q, which
+/// for a common rotation ω (about any point) is −s (sin ψ C·v − cos ψ C·w) u·ω with
+/// C = c_j − c_i. G_BS therefore annihilates common translations, the conjugate rotation and
+/// every common rotation with u·ω = 0 (about Z or v, through any point), but for a helical pair
+/// not a common rotation about u: its load −s sin ψ (C·v) ω_u (C·w = 0 for centres in one
+/// transverse plane) is the moment error of B–S's projected arms.
+/// @param[in] frame mesh frame [m, -].
+/// @param[in] half_face_width b > 0 [m] (cancels in P T; validated as by the two factors).
+/// @return G_BS (2×12) [-, m].
+/// @throws InvalidInput when half_face_width is not positive and finite.
+Matrix2x12 CalcBsProjectedJacobian(const MeshFrame& frame, double half_face_width);
+
 }  // namespace geardyn

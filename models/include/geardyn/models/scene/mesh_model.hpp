@@ -7,7 +7,9 @@
 /// **Same data, every level.** BuildMeshCore makes one MeshCoreSource (MakeMeshCoreSource) per
 /// mesh and builds the requested level from it, so switching `model` in the scene file (or with
 /// `--set mesh.NAME.model=...`) changes only the shape of the core (spec 01 §5: "selectable per
-/// mesh in the scene, all built from the same data").
+/// mesh in the scene, all built from the same data") — and, for "bs_projected", the mesh
+/// Jacobian the system assembles it with (B–S's projected-arm G_BS, CalcModelLevelJacobian),
+/// and for "five_dof" the transmission error (ε_η only, B–S Eq. 42).
 ///
 /// **Drive sign** s = ±1 (spec 01 §2: the sign of the pinion's driving torque about +Z) from the
 /// operating point (reference gear r, torque T_r, speed ratio ρ_p = Ω_pinion/Ω_r):
@@ -128,7 +130,8 @@ int MeshDriveSign(const Scene& scene, const MeshDef& mesh,
 ///   (MakeTransmissionErrorFourierCoefficient). P = lcm(z_1, z_2) with pitch errors or runout,
 ///   else 1. Then MakeMeshCore with core_options (level = mesh.model.level).
 /// * User parameters: a LinearMeshCore of the level on those channels, b = face_width/2,
-///   the damping; kMeanLti via MakeMeanLinearMeshCore.
+///   the damping; kMeanLti via MakeMeanLinearMeshCore, kFiveDof via
+///   MakeScalarTransmissionErrorCore (te_zeta dropped).
 /// @param[in] scene a validated scene (operating point, gears, meshes, bearings).
 /// @param[in] mesh one of its meshes (its `model` says what to build).
 /// @return the core, the contact-line model it came from, s and the warnings.

@@ -33,8 +33,9 @@
 /// motion body − other).
 ///
 /// **Meshes.** Frame from the pair geometry, the pinion's centre, γ and the drive sign s of
-/// BuildMeshCore (CalcMeshFrame); G = CalcMeshJacobian, restricted by CalcLevelJacobian for
-/// linear cores (the torsional level keeps only θz); the core from BuildMeshCore; the equivalent
+/// BuildMeshCore (CalcMeshFrame); G = CalcModelLevelJacobian of the mesh's level: the exact
+/// CalcMeshJacobian, its θz columns for the torsional level, B–S's projected-arm P T for
+/// bs_projected (b = the core's half face width); the core from BuildMeshCore; the equivalent
 /// mass for a damping ratio computed by SystemBuilder from the bodies' masses; phase ratio =
 /// mesh frequency / first mesh's mesh frequency (Scene::MeshFrequencyHz; 1 when unknown), phase
 /// offset 0 except in planetary sets (above).
