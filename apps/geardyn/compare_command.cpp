@@ -177,6 +177,10 @@ Command AddCompareCommand(CLI::App& app) {
                   "n values in [lo, hi] and report every level's errors against it "
                   "(compare_vary.csv/.json/.svg), e.g. gear.pinion.helix_angle_deg,"
                   "gear.wheel.helix_angle_deg=0:35:8");
+  cmd->add_flag("!--no-match-contact", opts->settings.match_contact,
+                "with the contact level: keep the scene's stiffness (ISO 6336) and mesh damping in "
+                "the other levels instead of the contact model's mean stiffness and its law's "
+                "damping at the mean load");
   cmd->add_option("--chart-x", opts->settings.chart_x,
                   "with floquet: a stability chart per level over path=lo:hi:n (as "
                   "`geardyn stability-chart --x`), the levels' transition curves overlaid in "

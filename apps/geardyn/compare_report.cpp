@@ -247,6 +247,7 @@ json MakeCompareReport(const CompareResult& r) {
   }
   report["levels"] = levels;
   report["warnings"] = r.warnings;
+  report["notes"] = r.notes;
   report["status"] = r.ok ? "success" : "numerical_issue";
   report["wall_time_s"] = r.wall_time_s;
   return report;
@@ -329,6 +330,7 @@ std::string FormatCompareText(const CompareResult& r) {
   for (const LevelRun& run : r.runs) {
     for (const std::string& w : run.warnings) s << "warning: " << run.level << ": " << w << "\n";
   }
+  for (const std::string& n : r.notes) s << "note: " << n << "\n";
   for (const std::string& w : r.warnings) s << "warning: " << w << "\n";
   s << "status: " << (r.ok ? "success" : "numerical issue (see the verdicts)") << ", "
     << Num(r.wall_time_s, "%.3g") << " s\n";
@@ -535,18 +537,18 @@ json MakeCompareVaryReport(const std::string& key, const std::vector<CompareVary
       json verdict = json::object();
       for (const auto& [a, x] : c.verdict)
         verdict[a == CompareAnalysis::kHb ? "dte" : ToString(a)] = x;
-      levels.push_back({{"level", c.level},
-                        {"modes_max_abs_relative_difference", Finite(n.modes_max)},
-                        {"modes_in_plane_max_abs_relative_difference", Finite(n.modes_in_plane)},
-                        {"modes_out_of_plane_max_abs_relative_difference",
-                         Finite(n.modes_out_of_plane)},
-                        {"modes_absent", n.absent},
-                        {"floquet_difference", Finite(n.floquet)},
-                        {"dte_max_abs_difference", Finite(n.dte_max)},
-                        {"dte_rms_difference", Finite(n.dte_rms)},
-                        {"dte_peak_shift", Finite(n.peak_shift)},
-                        {"verdict", verdict},
-                        {"notes", c.notes}});
+      levels.push_back(
+          {{"level", c.level},
+           {"modes_max_abs_relative_difference", Finite(n.modes_max)},
+           {"modes_in_plane_max_abs_relative_difference", Finite(n.modes_in_plane)},
+           {"modes_out_of_plane_max_abs_relative_difference", Finite(n.modes_out_of_plane)},
+           {"modes_absent", n.absent},
+           {"floquet_difference", Finite(n.floquet)},
+           {"dte_max_abs_difference", Finite(n.dte_max)},
+           {"dte_rms_difference", Finite(n.dte_rms)},
+           {"dte_peak_shift", Finite(n.peak_shift)},
+           {"verdict", verdict},
+           {"notes", c.notes}});
     }
     ok = ok && p.result.ok;
     points.push_back({{"value", p.value},
@@ -569,8 +571,8 @@ std::string FormatCompareVaryText(const std::string& key, const std::vector<Comp
   s << "compare over " << key << (v.empty() ? "" : ": " + v.front().result.scene) << "\n";
   s << Pad(key.substr(key.rfind('.') == std::string::npos ? 0 : key.rfind('.') + 1), 18)
     << Pad("level", 19) << Pad("max|Δf/f|", 11) << Pad("in plane", 10) << Pad("axial/rock", 11)
-    << Pad("absent", 8) << Pad("Δmax|λ|", 11)
-    << Pad("DTE max|Δ|", 12) << Pad("DTE RMS Δ", 11) << "peak shift\n";
+    << Pad("absent", 8) << Pad("Δmax|λ|", 11) << Pad("DTE max|Δ|", 12) << Pad("DTE RMS Δ", 11)
+    << "peak shift\n";
   for (const CompareVaryPoint& p : v) {
     for (const LevelComparison& c : p.result.comparisons) {
       const LevelNumbers n = NumbersOf(&c);

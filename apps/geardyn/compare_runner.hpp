@@ -64,8 +64,12 @@ struct CompareSettings {
   double simulate_tolerance = 1e-6;       ///< local relative error of the time integration
   int max_periods = 3000;                 ///< time domain: periods before not_converged
   double steady_tolerance = 1e-6;  ///< time domain: relative period-to-period change of steady
-  int threads = 0;                        ///< time domain: OpenMP threads (0: default)
-  bool progress = false;                  ///< progress lines on the error stream
+  int threads = 0;                 ///< time domain: OpenMP threads (0: default)
+  bool progress = false;           ///< progress lines on the error stream
+  /// With the contact level: the other levels take the contact model's mean mesh stiffness and
+  /// its law's damping at the mean load (overlay_match.hpp), so that they model the same teeth
+  /// (ISO 6336's stiffness and the scene's mesh damping otherwise).
+  bool match_contact = true;
   /// Stability charts per level (with floquet): "path=lo:hi:n" of both axes, as
   /// `geardyn stability-chart --x/--y`; empty: none. They need the scene's path and overrides
   /// (the chart reloads the scene at every axis value).
@@ -154,6 +158,7 @@ struct CompareResult {
   std::map<CompareAnalysis, std::string> reference;  ///< per analysis ("" when none ran)
   std::vector<LevelComparison> comparisons;          ///< in level order
   std::vector<std::string> warnings;
+  std::vector<std::string> notes;  ///< what the comparison did to the data (contact matching)
   CompareSettings settings;
   double wall_time_s = 0.0;
   bool ok = true;  ///< every run analysis succeeded
