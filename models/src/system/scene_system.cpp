@@ -96,6 +96,7 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
   if (scene.oscillator) {  // an oscillator scene (oscillator_system.hpp)
     SceneSystem out;
     out.model = MakeOscillatorSystemModel(*scene.oscillator);
+    out.warnings.push_back(kOscillatorUnitsNote);
     return out;
   }
   GEARDYN_THROW_UNLESS(!scene.gears.empty(), "scene: no gears");

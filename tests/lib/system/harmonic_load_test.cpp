@@ -7,6 +7,7 @@
 #include <complex>
 #include <limits>
 
+#include "geardyn/common/errors.hpp"
 #include "geardyn/system/system_builder.hpp"
 #include "geardyn/system/system_harmonics.hpp"
 #include "geardyn/system/workspace.hpp"

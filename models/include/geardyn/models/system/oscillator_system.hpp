@@ -36,6 +36,13 @@ namespace geardyn {
 /// The oscillator's undamped natural frequency in the model [Hz] (mean stiffness): 1.
 inline constexpr double kOscillatorNaturalFrequencyHz = 1.0;
 
+/// The note BuildSceneSystem adds to the warnings of an oscillator scene (the reports print DTE
+/// in µm and frequencies in Hz: what they mean here).
+inline constexpr const char* kOscillatorUnitsNote =
+    "oscillator scene (dimensionless, natural frequency 1 Hz): the mesh frequency [Hz] is the "
+    "frequency ratio Omega = omega_m/omega_n and the DTE is x in units of the half backlash b "
+    "(JSON *_m fields give x; text columns in um give 1e6 x)";
+
 /// @brief The SystemModel of an oscillator (see the @file).
 /// @throws InvalidInput naming the field on ζ < 0, |α| ≥ 1, a non-finite value, or model =
 ///   kSlices without backlash.
