@@ -20,14 +20,15 @@ using test::RunJson;
 constexpr const char* kBk = "builtin:blankenship-kahraman-oscillator";
 
 TEST(OscillatorCommand, HbIsNonlinearAndFindsTheJump) {
-  const nlohmann::json j = RunJson({"hb", kBk, "--mesh-frequency", "0.5:1.5:40"});
+  const nlohmann::json j =
+      RunJson({"hb", kBk, "--mesh-frequency", "0.5:1.5:40", "--branch-search", "0"});
   EXPECT_EQ(j["mode"], "nonlinear");
   EXPECT_EQ(j["status"], "success") << j["message"];
   ASSERT_GE(j["jumps"].size(), 2u);  // the up- and down-sweep jumps of the softening resonance
   ASSERT_GE(j["folds_hz"].size(), 2u);
   for (const auto& f : j["folds_hz"]) {
-    EXPECT_GT(f.get<double>(), 0.5);
-    EXPECT_LT(f.get<double>(), 1.2);  // below the linear resonance Ω = 1 … softening
+    EXPECT_GT(f.get<double>(), 0.3);  // a branch may turn back below the range's start
+    EXPECT_LT(f.get<double>(), 1.0);  // softening: below the linear resonance Ω = 1
   }
 }
 
