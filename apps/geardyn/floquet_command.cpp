@@ -133,14 +133,17 @@ int RunFloquet(const FloquetCommandOptions& opts, std::ostream& out) {
   options.tolerance = opts.tolerance;
   options.arpack_nev = opts.nev;
   const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
-  if (scene.meshes.empty()) throw InvalidInput(scene.source + ": the scene has no mesh");
+  if (scene.meshes.empty() && !scene.oscillator) {
+    throw InvalidInput(scene.source + ": the scene has no mesh");
+  }
   SceneSystemOptions system_options;
   system_options.analysis = "floquet";  // named if a mass is missing
   // The homogeneous problem M q̈ + C q̇ + K(θ) q = 0 has the period of K and C only: ε is forcing
   // (with coprime tooth counts its table would span the whole hunting period).
   system_options.transmission_error = false;
   const SceneSystem built = BuildSceneSystem(scene, system_options);
-  options.mesh_frequency_hz = scene.MeshFrequencyHz(scene.meshes[0]);
+  // An oscillator scene: its frequency_ratio Ω (the model's natural frequency is 1 Hz).
+  options.mesh_frequency_hz = scene.NominalMeshFrequencyHz();
   if (!(options.mesh_frequency_hz > 0.0)) {
     throw InvalidInput(scene.source +
                        ": the mesh frequency is 0 (operating_point.speed_rpm must be > 0)");

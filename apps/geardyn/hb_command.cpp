@@ -29,6 +29,7 @@
 #include "geardyn/common/check.hpp"
 #include "geardyn/hb_report.hpp"
 #include "geardyn/models/scene/scene_reader.hpp"
+#include "geardyn/models/system/oscillator_system.hpp"
 #include "geardyn/models/system/scene_system.hpp"
 #include "geardyn/nhb_report.hpp"
 #include "geardyn/output_files.hpp"
@@ -55,10 +56,11 @@ struct HbCommandOptions {
   CLI::Option* tolerance_option = nullptr;
 };
 
-// The scene's first mesh frequency [Hz], 0 when it has no meshes or no speed.
+// The scene's first mesh frequency [Hz], 0 when it has no meshes or no speed; an oscillator
+// scene's natural frequency (1 Hz: the default range is then 0.2 to 2.5 times it).
 double NominalMeshFrequency(const Scene& scene) {
-  if (scene.meshes.empty()) return 0.0;
-  return scene.MeshFrequencyHz(scene.meshes.front());
+  if (scene.oscillator) return kOscillatorNaturalFrequencyHz;
+  return scene.NominalMeshFrequencyHz();
 }
 
 NhbStabilityMethod StabilityMethod(const std::string& name) {
@@ -240,6 +242,11 @@ int RunHb(const HbCommandOptions& opts, std::ostream& out, std::ostream& err) {
   const SceneSystem built = BuildSceneSystem(scene, system_options);
   const bool has_slices = built.model.time_dependence() == TimeDependence::kNonlinear;
   if (opts.nonlinear) {
+    GEARDYN_THROW_UNLESS(has_slices || !scene.oscillator,
+                         "--nonlinear: the oscillator has the linear model \""
+                             << ToString(scene.oscillator->model)
+                             << "\"; the clearance needs backlash = true and model = \"slices\" "
+                                "(--set oscillator.model=slices)");
     const std::string name = scene.meshes.empty() ? "NAME" : scene.meshes.front().name;
     GEARDYN_THROW_UNLESS(has_slices,
                          "--nonlinear: the scene has no slice mesh (contact loss needs the slice "

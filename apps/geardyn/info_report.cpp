@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <numbers>
 #include <numeric>
 #include <sstream>
 
@@ -12,6 +13,7 @@
 #include "geardyn/models/contact/tooth_body.hpp"
 #include "geardyn/models/gear/iso_stiffness.hpp"
 #include "geardyn/models/scene/mesh_model.hpp"
+#include "geardyn/models/system/oscillator_system.hpp"
 #include "geardyn/shaft_report.hpp"
 
 namespace geardyn::app {
@@ -148,6 +150,29 @@ json Units() {
 nlohmann::json MakeInfoReport(const Scene& scene) {
   json report;
   report["scene"] = {{"source", scene.source}, {"title", scene.title}};
+  if (scene.oscillator) {
+    // An oscillator scene: its parameters and the scaling of its model (oscillator_system.hpp).
+    const OscillatorDef& o = *scene.oscillator;
+    report["oscillator"] = {
+        {"equation",
+         "x'' + 2 zeta x' + (1 + alpha cos(Omega t)) g(x) = F_m + F_a cos(Omega t + phi)"},
+        {"zeta", o.zeta},
+        {"alpha", o.alpha},
+        {"mean_force", o.mean_force},
+        {"alternating_force", o.alternating_force},
+        {"force_phase_deg", o.force_phase * 180.0 / std::numbers::pi},
+        {"backlash", o.backlash},
+        {"back_contact", o.back_contact},
+        {"model", ToString(o.model)},
+        {"frequency_ratio", o.frequency_ratio},
+        {"natural_frequency_hz", kOscillatorNaturalFrequencyHz},
+        {"scaling",
+         "dimensionless: the model's natural frequency is 1 Hz, so a mesh frequency in Hz "
+         "(hb, floquet, simulate) is the frequency ratio Omega = omega_m/omega_n, and the DTE "
+         "is x in units of the half backlash b"}};
+    report["units"] = {{"x", "-"}, {"frequency", "Omega = omega_m/omega_n (Hz of the 1 Hz model)"}};
+    return report;
+  }
   report["units"] = Units();
   report["operating_point"] = {{"body", scene.operating_point.body},
                                {"speed_rpm", RadPerSecToRpm(scene.operating_point.speed)},
@@ -195,6 +220,24 @@ std::string FormatInfoText(const nlohmann::json& report) {
   const std::string title = report["scene"]["title"].get<std::string>();
   if (!title.empty()) out << " — " << title;
   out << "\n";
+  if (report.contains("oscillator")) {
+    const json& o = report["oscillator"];
+    out << "oscillator (dimensionless): " << o["equation"].get<std::string>() << "\n";
+    Line(out, "zeta", o["zeta"].get<double>(), "-");
+    Line(out, "alpha", o["alpha"].get<double>(), "-");
+    Line(out, "mean force F_m", o["mean_force"].get<double>(), "-");
+    Line(out, "alternating force F_a", o["alternating_force"].get<double>(), "-");
+    Line(out, "force phase phi", o["force_phase_deg"].get<double>(), "deg");
+    out << "  g(x): "
+        << (o["backlash"].get<bool>()
+                ? (o["back_contact"].get<bool>() ? "clearance, both flanks (|x| <= 1 free)"
+                                                 : "clearance, front flank only (x <= 1 free)")
+                : "linear, g(x) = x")
+        << "; model " << o["model"].get<std::string>() << "\n";
+    Line(out, "frequency ratio Omega", o["frequency_ratio"].get<double>(), "-");
+    out << "  scaling: " << o["scaling"].get<std::string>() << "\n";
+    return out.str();
+  }
   const json& op = report["operating_point"];
   out << "operating point: " << op["speed_rpm"].get<double>() << " rpm, "
       << op["torque"].get<double>() << " N·m on " << op["body"].get<std::string>() << "\n";

@@ -19,6 +19,10 @@ int RunMesh(const MeshCommandOptions& opts, std::ostream& out) {
   std::string why;
   GEARDYN_THROW_UNLESS(opts.sampling.IsValid(&why), why);
   const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
+  GEARDYN_THROW_UNLESS(!scene.oscillator,
+                       scene.source << ": an oscillator scene has no gear mesh to sample (its "
+                                       "stiffness is k (1 + alpha cos theta) by definition; see "
+                                       "geardyn info)");
   std::vector<MeshSamples> samples;
   const nlohmann::json report = MakeMeshReport(scene, opts.sampling, &samples);
   if (opts.scene.json) {

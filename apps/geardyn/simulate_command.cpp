@@ -454,13 +454,17 @@ int RunSimulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) 
   Validate(o);
   const auto start = std::chrono::steady_clock::now();
   const Scene scene = LoadScene(o.scene.scene, o.scene.overrides);
+  GEARDYN_THROW_UNLESS(!scene.oscillator || (o.torques.empty() && !o.quasi_static),
+                       (o.quasi_static ? "--quasi-static" : "--torque")
+                           << ": an oscillator scene has no torque or slow roll (its load is "
+                              "oscillator.mean_force and alternating_force; set them with --set)");
   const std::vector<double> torques =
       o.torques.empty() ? std::vector<double>{scene.operating_point.torque} : o.torques;
   if (o.quasi_static) return RunQuasiStatic(o, scene, torques, out);
 
   std::vector<double> frequencies;
   if (o.mesh_frequency.empty()) {
-    const double nominal = scene.meshes.empty() ? 0.0 : scene.MeshFrequencyHz(scene.meshes[0]);
+    const double nominal = scene.NominalMeshFrequencyHz();
     GEARDYN_THROW_UNLESS(nominal > 0.0,
                          "--mesh-frequency: required (the scene's operating speed is 0)");
     frequencies = {nominal};

@@ -68,7 +68,7 @@ class ChartContext {
     std::vector<std::string> overrides = s_.overrides;
     overrides.insert(overrides.end(), extra.begin(), extra.end());
     const Scene scene = LoadScene(s_.scene, overrides);
-    if (scene.meshes.empty()) {
+    if (scene.meshes.empty() && !scene.oscillator) {
       throw InvalidInput(scene.source + ": the scene has no mesh (a stability chart needs one)");
     }
     SceneSystemOptions system_options;
@@ -76,7 +76,7 @@ class ChartContext {
     system_options.transmission_error = false;    // homogeneous problem: ε is forcing
     Built b;
     b.model = std::make_shared<const SystemModel>(MakeSystemModel(scene, system_options));
-    b.mesh_hz = scene.MeshFrequencyHz(scene.meshes[0]);
+    b.mesh_hz = scene.NominalMeshFrequencyHz();  // an oscillator: frequency_ratio [Hz]
     b.rpm = scene.operating_point.speed * 60.0 / (2.0 * std::numbers::pi);
     ++builds_;
     return b;

@@ -248,6 +248,16 @@ HbSetup& HarmonicBalanceSolver::Impl::Setup(int H) {
       }
     }
   }
+  // Harmonic loads Re(F e^{ilθ}): F/2 at the kept harmonic l·P (class 0, kept when l·P_K ≤ H).
+  for (const SystemHarmonicLoad& h : model.harmonic_loads()) {
+    const std::int64_t kk = static_cast<std::int64_t>(h.order) * model.period_meshes();
+    const auto at = std::lower_bound(ks.begin(), ks.end(), kk);
+    if (at == ks.end() || *at != kk) continue;
+    const auto i = static_cast<size_t>(at - ks.begin());
+    for (int a = 0; a < kBodyDofs; ++a) {
+      if (h.dofs[a] >= 0) s->F[i](h.dofs[a]) += 0.5 * h.amplitude(a);
+    }
+  }
   s->unbalanced = internal::BalanceMeanLoad(rigid, &s->F[0]);
 
   // Channels whose K2 or C2 varies with θ (the rank of the LTV part); only harmonics jq exist.

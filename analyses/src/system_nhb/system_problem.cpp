@@ -100,14 +100,29 @@ SystemNhbProblem MakeSystemNhbProblem(const SystemModel& model) {
   const MatrixX C = MeanDamping(model);
   const MatrixX M = model.DenseMass();
   const VectorX f0 = model.constant_load();
+  // Harmonic loads: the NhbProblem's f₁ at the excitation Ω = the mesh frequency (order 1).
+  VectorXc f1 = VectorXc::Zero(N);
+  for (const SystemHarmonicLoad& h : model.harmonic_loads()) {
+    GEARDYN_THROW_UNLESS(h.order == 1,
+                         "nonlinear harmonic balance: harmonic load '"
+                             << h.name << "' has order " << h.order
+                             << "; only order 1 (at the mesh frequency) is supported here (use "
+                                "the linear harmonic balance or the time domain)");
+    for (int a = 0; a < kBodyDofs; ++a) {
+      if (h.dofs[a] >= 0) f1(h.dofs[a]) += h.amplitude(a);
+    }
+  }
 
-  // The blocks (model.blocks(): decoupled DOF groups) that no mesh coordinate touches are LTI
-  // and loaded by constants only: their steady state is static (solved here once); keeping them
-  // out of the HB also keeps their undamped modes (|μ| = 1) out of the stability verdict.
+  // The blocks (model.blocks(): decoupled DOF groups) that no mesh coordinate or harmonic load
+  // touches are LTI and loaded by constants only: their steady state is static (solved here once);
+  // keeping them out of the HB also keeps their undamped modes (|μ| = 1) out of the stability
+  // verdict.
   std::vector<int> coupled, uncoupled;
   for (const std::vector<int>& block : model.blocks()) {
     bool touched = false;
-    for (int d : block) touched = touched || P.col(d).lpNorm<Eigen::Infinity>() > 0.0;
+    for (int d : block) {
+      touched = touched || P.col(d).lpNorm<Eigen::Infinity>() > 0.0 || std::abs(f1(d)) > 0.0;
+    }
     for (int d : block) (touched ? coupled : uncoupled).push_back(d);
   }
   std::sort(coupled.begin(), coupled.end());
@@ -167,7 +182,7 @@ SystemNhbProblem MakeSystemNhbProblem(const SystemModel& model) {
   p.stiffness = 0.5 * (p.stiffness + p.stiffness.transpose()).eval();
   p.projection = P(Eigen::all, coupled) * Tc;
   p.force_mean = Tt * fc;
-  p.force_amplitude = VectorXc::Zero(Tc.cols());
+  p.force_amplitude = Tt.cast<std::complex<double>>() * f1(coupled);
   p.law = std::make_shared<internal::MeshForceLaw>(model, std::move(terms));
   return out;
 }

@@ -323,6 +323,18 @@ void EvalForces(const TdSystem& sys, TdWorkspace& ws, double theta, double theta
                 const Eigen::Ref<const VectorX>& x, const Eigen::Ref<const VectorX>& v,
                 bool with_jacobians) {
   ws.force = sys.load0;
+  ws.mesh_phase_power = 0.0;
+  // Harmonic loads f_h(θ) = Re(F e^{imθ}); their power f_hᵀv is booked with the phase power
+  // (the work of a time-varying load is ∫ f_h(θ)ᵀ v dt, not f_hᵀΔx).
+  for (const SystemHarmonicLoad& h : sys.model.harmonic_loads()) {
+    const double c = std::cos(h.order * theta), s = std::sin(h.order * theta);
+    for (int a = 0; a < kBodyDofs; ++a) {
+      if (h.dofs[a] < 0) continue;
+      const double f = h.amplitude(a).real() * c - h.amplitude(a).imag() * s;
+      ws.force(h.dofs[a]) += f;
+      ws.mesh_phase_power += f * v(h.dofs[a]);
+    }
+  }
   ws.force.noalias() -= sys.stiffness0_sparse * x;
   ws.force.noalias() -= sys.damping0_sparse * v;
   const bool sparse = with_jacobians && ws.sparse_tangents;
@@ -339,7 +351,6 @@ void EvalForces(const TdSystem& sys, TdWorkspace& ws, double theta, double theta
   }
   ws.mesh_energy = 0.0;
   ws.mesh_dissipation = 0.0;
-  ws.mesh_phase_power = 0.0;
   for (const TdMeshTerm& t : sys.terms) {
     const auto k = static_cast<std::size_t>(t.mesh);
     const double th = t.phase_ratio * theta + t.phase_offset;

@@ -86,7 +86,7 @@ struct TdSystem {
 struct TdWorkspace {
   explicit TdWorkspace(const TdSystem& sys);
 
-  VectorX force;      ///< (n) f0 − K0x − C0v − Σ f_k [N, N·m]
+  VectorX force;      ///< (n) f0 + f_h(θ) − K0x − C0v − Σ f_k [N, N·m]
   MatrixX tangent_k;  ///< (n×n) −∂force/∂x (with_jacobians)
   MatrixX tangent_c;  ///< (n×n) −∂force/∂v (with_jacobians)
   /// When set (by an implicit stepper), EvalForces(with_jacobians) fills the sparse lists below
@@ -97,7 +97,7 @@ struct TdWorkspace {
   std::vector<Eigen::Triplet<double>> tangent_k_triplets, tangent_c_triplets;
   double mesh_energy = 0.0;           ///< Σ E_k [J]
   double mesh_dissipation = 0.0;      ///< Σ D_k [W] (mesh dampers and cores)
-  double mesh_phase_power = 0.0;      ///< Σ P_k [W]
+  double mesh_phase_power = 0.0;      ///< Σ P_k + f_h(θ)ᵀv of the harmonic loads [W]
   VectorX switching;                  ///< (num_switching) signed gaps [m]
   std::vector<char> switching_live;   ///< per switching function: watched at this state
   std::vector<double> force_eta;      ///< per mesh F_η [N] (elastic + damping; 0 nonlinear)

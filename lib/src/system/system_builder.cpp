@@ -175,6 +175,20 @@ void SystemBuilder::AddTorque(BodyIndex body, const Vector6& generalized_force,
   loads_.push_back({label, body, generalized_force});
 }
 
+void SystemBuilder::AddHarmonicLoad(BodyIndex body, const Vector6c& amplitude, int order,
+                                    const std::string& name) {
+  const std::string label =
+      name.empty() ? "harmonic load " + std::to_string(harmonic_loads_.size()) : name;
+  CheckBody(body, "harmonic load '" + label + "'");
+  GEARDYN_THROW_UNLESS(amplitude.allFinite(),
+                       "harmonic load '" << label << "' amplitude: non-finite value");
+  GEARDYN_THROW_UNLESS(order >= 1, "harmonic load '" << label
+                                                     << "' order: must be an integer >= 1 (a "
+                                                        "harmonic of the mesh frequency), got "
+                                                     << order);
+  harmonic_loads_.push_back({label, body, amplitude, order});
+}
+
 void SystemBuilder::SetRayleighDamping(double alpha, double beta) {
   GEARDYN_THROW_UNLESS(std::isfinite(alpha) && alpha >= 0.0,
                        "rayleigh alpha: must be finite and ≥ 0, got " << alpha);
@@ -328,6 +342,15 @@ SystemModel SystemBuilder::Build() const {
       data->load0(sl.dofs[c]) += l.force(c);
     }
     data->loads.push_back(std::move(sl));
+  }
+  for (const HarmonicLoad& l : harmonic_loads_) {
+    SystemHarmonicLoad sl;
+    sl.name = l.name;
+    sl.body = l.body;
+    sl.amplitude = l.amplitude;
+    sl.order = l.order;
+    for (int c = 0; c < kBodyDofs; ++c) sl.dofs[c] = kBodyDofs * l.body.value() + c;
+    data->harmonic_loads.push_back(std::move(sl));
   }
 
   internal::ComputeFacts(*data);  // blocks before Rayleigh/modal damping (which keep them)

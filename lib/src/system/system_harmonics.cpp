@@ -414,6 +414,14 @@ SystemHarmonics AssembleSystemHarmonics(const SystemModel& model,
   out.stiffness[0] = model.DenseConstantStiffness().cast<std::complex<double>>();
   out.damping[0] = model.DenseConstantDamping().cast<std::complex<double>>();
   out.load[0] = model.constant_load().cast<std::complex<double>>();
+  // Harmonic loads Re(F e^{ilθ}) = (F e^{ilθ} + conj)/2: F/2 at harmonic l·P of 1/P.
+  for (const SystemHarmonicLoad& h : model.harmonic_loads()) {
+    const std::int64_t m = static_cast<std::int64_t>(h.order) * out.period_meshes;
+    if (m > num) continue;
+    for (int a = 0; a < kBodyDofs; ++a) {
+      if (h.dofs[a] >= 0) out.load[static_cast<std::size_t>(m)](h.dofs[a]) += 0.5 * h.amplitude(a);
+    }
+  }
   for (std::size_t k = 0; k < meshes.size(); ++k) {
     const SystemMesh& mesh = model.meshes()[k];
     const Eigen::Matrix<std::complex<double>, 2, 12> G = mesh.G.cast<std::complex<double>>();

@@ -218,6 +218,9 @@ const std::vector<SystemMesh>& SystemModel::meshes() const { return data_->meshe
 int SystemModel::num_meshes() const { return static_cast<int>(data_->meshes.size()); }
 const std::vector<SystemElement>& SystemModel::elements() const { return data_->elements; }
 const std::vector<SystemLoad>& SystemModel::loads() const { return data_->loads; }
+const std::vector<SystemHarmonicLoad>& SystemModel::harmonic_loads() const {
+  return data_->harmonic_loads;
+}
 double SystemModel::rayleigh_alpha() const { return data_->rayleigh_alpha; }
 double SystemModel::rayleigh_beta() const { return data_->rayleigh_beta; }
 double SystemModel::modal_damping_ratio() const { return data_->modal_zeta; }
@@ -297,6 +300,15 @@ SystemModel SystemModel::Restrict(const std::vector<int>& dofs) const {
     }
     if (any) out->loads.push_back(std::move(r));
   }
+  for (const SystemHarmonicLoad& load : in.harmonic_loads) {
+    SystemHarmonicLoad r = load;
+    bool any = false;
+    for (int& d : r.dofs) {
+      d = remap(d);
+      any = any || (d >= 0);
+    }
+    if (any) out->harmonic_loads.push_back(std::move(r));
+  }
   out->rayleigh_alpha = in.rayleigh_alpha;
   out->rayleigh_beta = in.rayleigh_beta;
   out->modal_zeta = in.modal_zeta;
@@ -310,6 +322,15 @@ std::int64_t OperatorPeriodMeshes(const SystemModel& model) {
   // Every core's operator period divides its period, so P_K divides the model's P.
   GEARDYN_DEMAND(model.period_meshes() % p == 0);
   return p;
+}
+
+void AccumulateHarmonicLoads(const SystemModel& model, double theta, Eigen::Ref<VectorX> load) {
+  for (const SystemHarmonicLoad& h : model.harmonic_loads()) {
+    const double c = std::cos(h.order * theta), s = std::sin(h.order * theta);
+    for (int a = 0; a < kBodyDofs; ++a) {
+      if (h.dofs[a] >= 0) load(h.dofs[a]) += h.amplitude(a).real() * c - h.amplitude(a).imag() * s;
+    }
+  }
 }
 
 }  // namespace geardyn

@@ -20,6 +20,7 @@ struct SystemModel::Data {
   std::vector<SystemMesh> meshes;
   std::vector<SystemElement> elements;
   std::vector<SystemLoad> loads;
+  std::vector<SystemHarmonicLoad> harmonic_loads;
   double rayleigh_alpha = 0.0;
   double rayleigh_beta = 0.0;
   double modal_zeta = 0.0;

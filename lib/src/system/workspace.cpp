@@ -256,6 +256,7 @@ const VectorX& AssembleLoad(const SystemModel& model, SystemWorkspace& ws, doubl
     ws.mesh_load[k].noalias() = meshes[k].G.transpose() * v.load;
     ScatterLoad(meshes[k], ws.mesh_load[k], ws.load);
   }
+  AccumulateHarmonicLoads(model, theta, ws.load);
   return ws.load;
 }
 

@@ -43,6 +43,18 @@ const GearDef& Scene::gear(std::string_view name) const {
   throw InvalidInput("gear: no gear named '" + std::string(name) + "' in scene '" + source + "'");
 }
 
+const char* ToString(OscillatorModel model) {
+  switch (model) {
+    case OscillatorModel::kSlices:
+      return "slices";
+    case OscillatorModel::kTorsional:
+      return "torsional";
+    case OscillatorModel::kLti:
+      return "lti";
+  }
+  return "?";
+}
+
 double Scene::GearSpeed(std::string_view name) const {
   (void)gear(name);  // throws if absent
   const internal::SpeedRatios ratios = internal::CalcSpeedRatios(*this, operating_point.body);
@@ -71,6 +83,12 @@ double Scene::MeshFrequencyHz(const MeshDef& mesh) const {
   // Inside a planetary set the teeth pass at the speed relative to the carrier.
   if (const auto set = FindPlanetaryMesh(mesh.name)) omega -= GearSpeed(set->first->carrier);
   return std::abs(omega) * static_cast<double>(gear(mesh.pinion).blank.teeth) / (2.0 * kPi);
+}
+
+double Scene::NominalMeshFrequencyHz() const {
+  if (oscillator) return oscillator->frequency_ratio;
+  if (meshes.empty()) return 0.0;
+  return MeshFrequencyHz(meshes.front());
 }
 
 }  // namespace geardyn

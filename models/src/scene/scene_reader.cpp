@@ -131,8 +131,29 @@ Scene Validate(const ErrorContext& ctx, const toml::table& root) {
   Scene scene;
   scene.source = ctx.source();
   const internal::Fields top(ctx, root, "");
+  if (const toml::node* osc = root.get("oscillator")) {
+    // An oscillator scene: the [oscillator] table alone (and a title).
+    for (const char* key : {"gear", "mesh", "planetary", "bearing", "load", "operating_point",
+                            "damping", "shaft", "planar"}) {
+      if (root.get(key) != nullptr) {
+        ctx.Fail(root.get(key), key,
+                 "an oscillator scene ([oscillator]) is the dimensionless oscillator alone and "
+                 "takes no '" +
+                     std::string(key) + "' (remove it, or the [oscillator] table)");
+      }
+    }
+    top.CheckKnown({"title", "oscillator"});
+    if (auto title = top.OptString("title")) scene.title = *title;
+    const toml::table* t = osc->as_table();
+    if (t == nullptr) {
+      ctx.Fail(osc, "oscillator",
+               "must be a table ([oscillator]), got " + internal::Describe(*osc));
+    }
+    scene.oscillator = internal::ReadOscillator(ctx, *t);
+    return scene;
+  }
   top.CheckKnown({"title", "planar", "gear", "mesh", "planetary", "bearing", "load",
-                  "operating_point", "damping", "shaft"});
+                  "operating_point", "damping", "shaft", "oscillator"});
   if (auto title = top.OptString("title")) scene.title = *title;
   if (auto planar = top.OptBool("planar")) scene.planar = *planar;
 

@@ -90,4 +90,7 @@ OperatingPointDef ReadOperatingPoint(const ErrorContext& ctx, const toml::table&
 /// ratios or Rayleigh coefficients; an empty SystemDamping when absent.
 SystemDamping ReadSystemDamping(const ErrorContext& ctx, const toml::table& root);
 
+/// @brief Reads the [oscillator] table `t` of an oscillator scene (oscillator_reader.cpp).
+OscillatorDef ReadOscillator(const ErrorContext& ctx, const toml::table& t);
+
 }  // namespace geardyn::internal

@@ -15,6 +15,7 @@
 #include "geardyn/models/scene/mesh_model.hpp"
 #include "geardyn/models/scene/planetary.hpp"
 #include "geardyn/models/scene/scene_reader.hpp"
+#include "geardyn/models/system/oscillator_system.hpp"
 #include "geardyn/system/system_builder.hpp"
 #include "geardyn/system/system_damping.hpp"
 
@@ -92,6 +93,12 @@ bool SceneSystemOptions::IsValid(std::string* why) const {
 SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& options) {
   std::string why;
   GEARDYN_THROW_UNLESS(options.IsValid(&why), why);
+  if (scene.oscillator) {  // an oscillator scene (oscillator_system.hpp)
+    SceneSystem out;
+    out.model = MakeOscillatorSystemModel(*scene.oscillator);
+    out.warnings.push_back(kOscillatorUnitsNote);
+    return out;
+  }
   GEARDYN_THROW_UNLESS(!scene.gears.empty(), "scene: no gears");
   for (const MeshDef& m : scene.meshes) {
     GEARDYN_THROW_UNLESS(

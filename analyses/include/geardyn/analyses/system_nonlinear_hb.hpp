@@ -31,7 +31,8 @@
 ///   invariant along V) and Rayleigh damping αM + βK̄ does not couple V to T (Vᵀ M T = 0). The part
 ///   of f0 along V (a torque the supports cannot react) is removed with a warning. The rigid modes'
 ///   Floquet multipliers (exactly 1) are thereby excluded from the stability verdict;
-/// * f0 → Tᵀ f0; no harmonic force (the excitation is the θ-variation inside g̃);
+/// * f0 → Tᵀ f0; f₁ = Tᵀ Σ F_l of the harmonic loads of order 1 (SystemHarmonicLoad; higher
+///   orders are refused: NhbProblem forces at Ω only), besides the θ-variation inside g̃;
 /// * Ω = ω_m = 2π f_m [rad/s]; period multiple p = P·(requested multiple), P the system's
 ///   period_meshes() (hunting period); the harmonics H are harmonics of ω_m/p.
 ///

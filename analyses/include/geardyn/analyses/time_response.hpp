@@ -6,7 +6,8 @@
 /// **Equation** (the model harmonic balance solves, with the internal coordinates of nonlinear
 /// cores appended). State y = [x; v], x = [q (num_dofs); x_int (Σ internal coordinates, mesh by
 /// mesh)], θ = θ₀ + ω_m t, θ_k = r_k θ + φ_k:
-/// \f[ M\ddot x + C_0 \dot x + K_0 x + \sum_k f_k(x, \dot x, θ_k, \dot θ_k) = f_0, \f]
+/// \f[ M\ddot x + C_0 \dot x + K_0 x + \sum_k f_k(x, \dot x, θ_k, \dot θ_k) = f_0 + f_h(θ), \f]
+/// f_h(θ) = Σ_l Re(F_l e^{i m_l θ}) the harmonic loads (SystemHarmonicLoad),
 /// with M = system mass + every core's InternalMass() and, per mesh core form,
 /// * LinearMeshCore: f_k = P_kᵀ G_kᵀ [K2(θ_k)(δ − ε(θ_k)) + C2(θ_k) δ̇] (B–S Eq. 39) — the LTV
 ///   model the linear HB solves (workspace.hpp kernels);
@@ -28,9 +29,9 @@
 /// coefficients and the nodes of table coefficients are phase events: steps end there (the
 /// energy jump of a stepwise stiffness is booked as phase work).
 ///
-/// **Energy balance** per integrated period: input work W = f₀ᵀΔx + ∫ΣP_k dt, stored change
-/// ΔS = Δ(T + V₀ + ΣE_k), dissipation D = ∫(vᵀC₀v + ΣD_k) dt (D_k, P_k of the mesh forces: for
-/// linear/slice cores the damper power and the phase power ∂E_k/∂θ·θ̇), integrated with the
+/// **Energy balance** per integrated period: input work W = f₀ᵀΔx + ∫(ΣP_k + f_hᵀv) dt, stored
+/// change ΔS = Δ(T + V₀ + ΣE_k), dissipation D = ∫(vᵀC₀v + ΣD_k) dt (D_k, P_k of the mesh forces:
+/// for linear/slice cores the damper power and the phase power ∂E_k/∂θ·θ̇), integrated with the
 /// solution (two extra ODE states on the Runge–Kutta path; on the generalized-α path the rule on
 /// the nodes 0, α-point, 1 exact for quadratics). Relative error |W − ΔS − D| / max(|W|, D, |ΔS|,
 /// 1e-9·|S|). It measures the integration error: ≲ 1e-9 for rk8pd, O(tol^{2/3}) for

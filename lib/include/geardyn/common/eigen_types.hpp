@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <complex>
 
 namespace geardyn {
 
@@ -15,6 +16,7 @@ using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 using Vector2 = Eigen::Vector2d;
 using Vector3 = Eigen::Vector3d;
 using Vector6 = Eigen::Matrix<double, 6, 1>;
+using Vector6c = Eigen::Matrix<std::complex<double>, 6, 1>;
 using Vector12 = Eigen::Matrix<double, 12, 1>;
 using Matrix2 = Eigen::Matrix2d;
 using Matrix3 = Eigen::Matrix3d;

@@ -81,6 +81,14 @@ class SystemBuilder {
   /// @throws InvalidInput on an unknown body or non-finite values.
   void AddTorque(BodyIndex body, const Vector6& generalized_force, const std::string& name = "");
 
+  /// @brief Adds a harmonic generalized force Re(F e^{i m θ}) on a body's reference point, θ the
+  /// system phase (SystemHarmonicLoad): F cos(mθ + φ) is amplitude = F e^{iφ}.
+  /// @param[in] amplitude F [Fx, Fy, Fz, Mx, My, Mz] [N, N·m], complex, finite.
+  /// @param[in] order m ≥ 1: the harmonic of the mesh frequency.
+  /// @throws InvalidInput naming the load on an unknown body, a non-finite amplitude or m < 1.
+  void AddHarmonicLoad(BodyIndex body, const Vector6c& amplitude, int order,
+                       const std::string& name = "");
+
   /// @brief Rayleigh damping C += α M + β K̄ (see the file comment).
   /// @param[in] alpha α ≥ 0 [1/s]. @param[in] beta β ≥ 0 [s].
   /// @throws InvalidInput on negative or non-finite values, or if modal damping was set.
@@ -116,6 +124,12 @@ class SystemBuilder {
     BodyIndex body;
     Vector6 force;
   };
+  struct HarmonicLoad {
+    std::string name;
+    BodyIndex body;
+    Vector6c amplitude;
+    int order;
+  };
   struct Mesh {
     std::string name;
     BodyIndex body_i, body_j;
@@ -136,6 +150,7 @@ class SystemBuilder {
   std::vector<Element> elements_;
   std::vector<Mesh> meshes_;
   std::vector<Load> loads_;
+  std::vector<HarmonicLoad> harmonic_loads_;
   SystemDamping damping_;
 };
 

@@ -51,7 +51,7 @@ struct SystemHarmonics {
   std::int64_t period_meshes = 1;   ///< P: harmonic m has frequency m/P × mesh frequency
   std::vector<MatrixXc> stiffness;  ///< (n×n) K_m, K_0 = K0 + mean of the mesh terms
   std::vector<MatrixXc> damping;    ///< (n×n) C_m, C_0 includes C0
-  std::vector<VectorXc> load;       ///< (n) f_m, f_0 includes f0
+  std::vector<VectorXc> load;       ///< (n) f_m, f_0 includes f0, f_{lP} the loads' F_l/2
   /// N.
   int num_harmonics() const { return static_cast<int>(stiffness.size()) - 1; }
 };

@@ -5,7 +5,8 @@
 /// **Equation.** With q the (num_dofs) coordinates [m, rad] of the kept DOFs (see DofMap),
 /// \f[ M\ddot q + \Big(C_0 + \sum_k P_k^T G_k^T C2_k(θ_k) G_k P_k\Big)\dot q
 ///     + \Big(K_0 + \sum_k P_k^T G_k^T K2_k(θ_k) G_k P_k\Big) q
-///     = f_0 + \sum_k P_k^T G_k^T K2_k(θ_k)\,ε_k(θ_k) \f]
+///     = f_0 + \sum_l \mathrm{Re}\big(F_l e^{i m_l θ}\big) + \sum_k P_k^T G_k^T K2_k(θ_k)\,ε_k(θ_k)
+///     \f]
 /// for the linear mesh cores (spec 01 §3; B–S Eq. 39, 41), where P_k picks the 12 coordinates
 /// [q_i; q_j] of mesh k's two bodies and θ_k = r_k θ + φ_k is mesh k's phase (ratio r_k and
 /// offset φ_k, SystemMesh). Slice and nonlinear cores replace the mesh term by their force
@@ -15,7 +16,9 @@
 /// **Model parts** (units: K [N/m, N, N·m/rad], C [N·s/m, …], M [kg, kg·m, kg·m²]):
 /// M (sparse, symmetric positive definite), K0 (bearings, shafts, couplings, springs), C0 (their
 /// dampers + Rayleigh/modal damping), the meshes (DOF indices, fixed 2×12 G, core, resolved
-/// mesh damping coefficient c_m), the constant loads f0, and the element list with their DOF
+/// mesh damping coefficient c_m), the constant loads f0, the harmonic loads Re(F_l e^{i m_l θ})
+/// (SystemHarmonicLoad: an external force at an integer mesh order m_l ≥ 1 of the system phase θ),
+/// and the element list with their DOF
 /// indices and matrices (for strain-energy fractions and bearing forces).
 ///
 /// **Structure facts** (decided once, at build time): time_dependence() (the Combine of every
@@ -100,6 +103,18 @@ struct SystemLoad {
   std::array<int, kBodyDofs> dofs{};  ///< system DOF of each component, −1 when held fixed
 };
 
+/// @brief A harmonic generalized force on one body: f(θ) = Re(F e^{i m θ}) with θ the system
+/// phase (θ = ω_m t, the first mesh's phase) and m ≥ 1 an integer mesh order, so that it never
+/// changes the period facts. F cos(mθ + φ) is amplitude = F e^{iφ}. In the Fourier convention
+/// f(θ) = Σ_m f_m e^{imθ}, f_{−m} = conj(f_m) of system_harmonics.hpp it contributes F/2 at +m.
+struct SystemHarmonicLoad {
+  std::string name;
+  BodyIndex body;
+  Vector6c amplitude = Vector6c::Zero();  ///< F: [Fx, Fy, Fz, Mx, My, Mz] [N, N·m], complex
+  int order = 1;                          ///< m ≥ 1 [-]: harmonic of the mesh frequency
+  std::array<int, kBodyDofs> dofs{};      ///< system DOF of each component, −1 when held fixed
+};
+
 struct SystemDamping;
 
 /// @brief The assembled system; build it with SystemBuilder (system_builder.hpp).
@@ -148,6 +163,9 @@ class SystemModel {
   const std::vector<SystemElement>& elements() const;
   /// The external loads.
   const std::vector<SystemLoad>& loads() const;
+  /// The harmonic external loads Re(F e^{imθ}) (SystemHarmonicLoad); part of f(θ) wherever the
+  /// analyses read the load (AssembleLoad, the load harmonics, the time-domain force).
+  const std::vector<SystemHarmonicLoad>& harmonic_loads() const;
   /// Rayleigh coefficients (α [1/s], β [s]) applied to C0 (zero when unused).
   double rayleigh_alpha() const;
   /// See rayleigh_alpha().
@@ -177,9 +195,9 @@ class SystemModel {
   /// @throws InvalidInput if b is out of range.
   SystemModel RestrictToBlock(int b) const;
   /// @brief The sub-system on a DOF subset, the other DOFs held fixed (q = 0 there): M, K0, C0
-  /// and f0 restricted; elements, meshes and loads keep their entries on the kept DOFs (the
-  /// others become −1); meshes and loads that touch no kept DOF are dropped. Damping specs are
-  /// not re-derived (C0 is restricted as assembled). Facts are recomputed.
+  /// and f0 restricted; elements, meshes, loads and harmonic loads keep their entries on the kept
+  /// DOFs (the others become −1); meshes and loads that touch no kept DOF are dropped. Damping
+  /// specs are not re-derived (C0 is restricted as assembled). Facts are recomputed.
   /// @param[in] dofs strictly increasing indices into this model.
   /// @throws InvalidInput on an out-of-range or non-increasing index.
   SystemModel Restrict(const std::vector<int>& dofs) const;
@@ -197,5 +215,9 @@ class SystemModel {
 /// mesh cycles, which the homogeneous (Floquet) problem and the harmonic coupling of the linear
 /// HB use. It divides period_meshes(), which also counts the hunting period of ε (issue 12).
 std::int64_t OperatorPeriodMeshes(const SystemModel& model);
+
+/// @brief Adds the harmonic loads Σ Re(F_l e^{i m_l θ}) at the system phase θ [rad] to `load`
+/// (num_dofs) [N, N·m] on their kept DOFs. No allocation.
+void AccumulateHarmonicLoads(const SystemModel& model, double theta, Eigen::Ref<VectorX> load);
 
 }  // namespace geardyn

@@ -6,7 +6,8 @@
 /// never allocates once the workspace exists):
 /// * AssembleStiffness: K(θ) = K0 + Σ_k P_kᵀ G_kᵀ K2_k(θ_k) G_k P_k.
 /// * AssembleDamping:   C(θ) = C0 + Σ_k P_kᵀ G_kᵀ C2_k(θ_k) G_k P_k, C2 = (c_m/K) K2 (B–S Eq. 39).
-/// * AssembleLoad:      f(θ) = f0 + Σ_k P_kᵀ G_kᵀ K2_k(θ_k) ε_k(θ_k) (EvalTransmissionErrorLoad).
+/// * AssembleLoad:      f(θ) = f0 + Σ_l Re(F_l e^{i m_l θ}) + Σ_k P_kᵀ G_kᵀ K2_k(θ_k) ε_k(θ_k)
+///   (harmonic loads, EvalTransmissionErrorLoad).
 /// * AssembleMeanStiffness: K̄ = K0 + Σ_k P_kᵀ G_kᵀ K̄2_k G_k P_k (θ-mean of K2; LTI analyses).
 /// with θ_k = SystemMesh::MeshPhase(θ).
 ///
@@ -85,9 +86,9 @@ const SparseMatrix& AssembleDampingSparse(const SystemModel& model, SystemWorksp
                                           double theta);
 /// @brief f(θ) (either workspace). No allocation. @return ws.load (n) [N, N·m].
 const VectorX& AssembleLoad(const SystemModel& model, SystemWorkspace& ws, double theta);
-/// @brief θ-mean of f(θ): f0 + Σ Gᵀ mean(K2 ε), the mean of the product taken by the rectangle
-/// rule on `samples_per_period`·P points per mesh period (exact for constant K2 or ε and for
-/// trigonometric polynomials of degree < samples/2). @return ws.load.
+/// @brief θ-mean of f(θ): f0 + Σ Gᵀ mean(K2 ε) (harmonic loads have mean zero), the mean of the
+/// product taken by the rectangle rule on `samples_per_period`·P points per mesh period (exact for
+/// constant K2 or ε and for trigonometric polynomials of degree < samples/2). @return ws.load.
 const VectorX& AssembleMeanLoad(const SystemModel& model, SystemWorkspace& ws,
                                 int samples_per_period = 512);
 

@@ -160,6 +160,37 @@ struct OperatingPointDef {
   double torque = 0.0;  ///< mean torque on the reference gear [N·m], signed
 };
 
+/// @brief The model level of an oscillator scene (`[oscillator] model`, like a mesh's `model`).
+enum class OscillatorModel {
+  kSlices,     ///< "slices": the clearance g(x) (SliceMeshCore), nonlinear
+  kTorsional,  ///< "torsional": linear g(x) = x with k(1 + α cos Ωt) (LTV)
+  kLti,        ///< "lti": linear, α dropped (mean stiffness; LTI)
+};
+/// "slices", "torsional", "lti".
+const char* ToString(OscillatorModel model);
+
+/// @brief The dimensionless single-DOF gear-mesh oscillator of Kahraman & Singh (1990, 1991) and
+/// Blankenship & Kahraman (1995) (docs/scene-format.md "Oscillator scenes"):
+/// \f[ x'' + 2ζ x' + (1 + α \cos Ωτ)\, g(x) = F_m + F_a \cos(Ωτ + φ), \f]
+/// τ = ω_n t, x in units of the half backlash b, g(x) = x − 1 (x > 1), 0 (|x| ≤ 1), x + 1
+/// (x < −1; 0 without back contact) for the clearance model, g(x) = x for the linear ones.
+struct OscillatorDef {
+  double zeta = 0.05;              ///< ζ ≥ 0 [-]
+  double alpha = 0.0;              ///< α, |α| < 1 [-]
+  double mean_force = 0.1;         ///< F_m [-]
+  double alternating_force = 0.0;  ///< F_a [-]
+  double force_phase = 0.0;        ///< φ [rad] (the file gives degrees)
+  bool backlash = true;            ///< the clearance g; false: g(x) = x (linear oscillator)
+  bool back_contact = true;        ///< back-flank contact at x < −1 (with backlash)
+  /// Ω = ω_m/ω_n [-], the operating point: the mesh frequency [Hz] of the 1 Hz model that
+  /// floquet, stability-chart and simulate use by default (hb: its default range), > 0.
+  double frequency_ratio = 1.0;
+  /// The level: kSlices by default with backlash, kTorsional without (kSlices is refused
+  /// without backlash by the reader).
+  OscillatorModel model = OscillatorModel::kSlices;
+  int line = 0;  ///< line of the [oscillator] table in the scene file (0: unknown)
+};
+
 /// @brief A validated scene (see docs/scene-format.md for the file format).
 struct Scene {
   std::string source;  ///< file path or "builtin:NAME" it was read from
@@ -176,6 +207,10 @@ struct Scene {
   /// System damping of the [damping] table (modal ratios or Rayleigh α, β; none when absent),
   /// added to C0 by MakeSystemModel after the planar restriction (system_damping.hpp).
   SystemDamping damping;
+  /// An oscillator scene (`[oscillator]` table): then gears, meshes, bearings, shafts, loads and
+  /// planetaries are empty, the operating point is unused, and BuildSceneSystem builds the
+  /// oscillator's model (oscillator_system.hpp).
+  std::optional<OscillatorDef> oscillator;
 
   /// @brief The planetary set and planet index n whose sun or ring mesh is `mesh_name`, if any.
   std::optional<std::pair<const PlanetaryDef*, int>> FindPlanetaryMesh(
@@ -205,6 +240,11 @@ struct Scene {
   /// relative to the carrier for a planetary mesh.
   /// @throws InvalidInput if the mesh's pinion is not connected to the reference gear.
   double MeshFrequencyHz(const MeshDef& mesh) const;
+
+  /// @brief The scene's nominal mesh frequency [Hz]: the first mesh's MeshFrequencyHz, or for an
+  /// oscillator scene its frequency_ratio (the model's natural frequency is 1 Hz), 0 without
+  /// meshes.
+  double NominalMeshFrequencyHz() const;
 };
 
 }  // namespace geardyn

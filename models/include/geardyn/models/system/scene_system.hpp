@@ -110,7 +110,10 @@ struct SceneSystem {
   std::vector<std::string> warnings;  ///< from BuildMeshCore (drive-sign fallbacks, ISO notes)
 };
 
-/// @brief Builds the SystemModel of a scene and reports the placement (see the @file).
+/// @brief Builds the SystemModel of a scene and reports the placement (see the @file). An
+/// oscillator scene (Scene::oscillator) gives MakeOscillatorSystemModel's one-DOF model
+/// (oscillator_system.hpp) with empty placement vectors; `options` are then not used beyond
+/// their validation (no planar restriction, no gears).
 /// @throws InvalidInput on invalid options, an inconsistent closed loop, or as SystemBuilder and
 ///   BuildMeshCore; SceneError at the body's table when a body has no mass or inertia.
 SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& options = {});
