@@ -110,6 +110,26 @@ std::vector<CompareAnalysis> ParseCompareAnalyses(const std::string& list) {
 }
 
 Scene SceneAtLevel(const Scene& scene, const std::string& level) {
+  if (scene.oscillator) {
+    // The literature's oscillator (Kahraman & Singh; Blankenship & Kahraman): its own levels.
+    Scene out = scene;
+    if (level == "slices") {
+      GEARDYN_THROW_UNLESS(scene.oscillator->backlash,
+                           "the oscillator has backlash = false, so it has no clearance (slices) "
+                           "level");
+      out.oscillator->model = OscillatorModel::kSlices;
+    } else if (level == "torsional") {
+      out.oscillator->model = OscillatorModel::kTorsional;
+    } else if (level == "lti") {
+      out.oscillator->model = OscillatorModel::kLti;
+    } else {
+      throw InvalidInput(
+          "an oscillator scene has the levels slices (the clearance), torsional "
+          "(linear, k(1 + α cos Ωt)) and lti (linear, α dropped), not '" +
+          level + "'");
+    }
+    return out;
+  }
   const std::optional<MeshModelLevel> parsed = ParseMeshModelLevel(level);
   GEARDYN_THROW_UNLESS(parsed.has_value(),
                        "level '" << level << "': not a mesh model of this build of geardyn");

@@ -44,8 +44,9 @@ std::vector<std::string> ParseCompareLevels(const std::string& list);
 /// naming --analyses on unknown or duplicate names or an empty list).
 std::vector<CompareAnalysis> ParseCompareAnalyses(const std::string& list);
 
-/// @brief The scene with every mesh at `level` (the oscillator's model for an oscillator scene).
-/// @throws InvalidInput when the scene has nothing a level applies to.
+/// @brief The scene with every mesh at `level`; for an oscillator scene (Scene::oscillator) its
+/// model: slices (the clearance, with backlash only), torsional (linear LTV) or lti.
+/// @throws InvalidInput when the scene has nothing the level applies to.
 Scene SceneAtLevel(const Scene& scene, const std::string& level);
 
 }  // namespace geardyn::app

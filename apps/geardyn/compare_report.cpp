@@ -180,8 +180,9 @@ json MakeCompareReport(const CompareResult& r) {
                           {"dte", Reference(r, CompareAnalysis::kHb)}};
   report["frequencies_hz"] = r.frequencies_hz;
   report["dte_quantity"] =
-      "loaded transmission error delta_eta = g q along the tooth normal (RMS of the alternating "
-      "part, peak-to-peak) [m]";
+      r.dimensionless ? "x of the oscillator (dimensionless; the *_m fields hold x)"
+                      : "loaded transmission error delta_eta = g q along the tooth normal (RMS "
+                        "of the alternating part, peak-to-peak) [m]";
   json levels = json::array();
   for (const LevelRun& run : r.runs) {
     json l;
@@ -411,7 +412,8 @@ std::string RenderCompareDtePlot(const CompareResult& r) {
                Reference(r, CompareAnalysis::kHb) + ")";
   spec.x_label = "mesh frequency [Hz]";
   PlotPanel rms, diff;
-  rms.y_label = "RMS DTE [µm]";
+  rms.y_label = r.dimensionless ? "RMS x [-]" : "RMS DTE [µm]";
+  const double unit = r.dimensionless ? 1.0 : kMicro;
   diff.y_label = "Δ RMS [% of the reference's peak]";
   std::size_t index = 0;
   for (const LevelRun& run : r.runs) {
@@ -424,10 +426,10 @@ std::string RenderCompareDtePlot(const CompareResult& r) {
       return out;
     };
     rms.series.push_back({run.level + " (" + d.source + (d.multivalued ? ", up" : "") + ")",
-                          r.frequencies_hz, scaled(d.rms_up, kMicro), false, colour});
+                          r.frequencies_hz, scaled(d.rms_up, unit), false, colour});
     if (d.multivalued) {
       rms.series.push_back(
-          {run.level + " (down)", r.frequencies_hz, scaled(d.rms_down, kMicro), true, colour});
+          {run.level + " (down)", r.frequencies_hz, scaled(d.rms_down, unit), true, colour});
     }
     const LevelComparison* c = ComparisonOf(r, run.level);
     if (c && c->dte && run.level != Reference(r, CompareAnalysis::kHb)) {

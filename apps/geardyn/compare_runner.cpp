@@ -109,14 +109,24 @@ CompareResult RunCompare(const Scene& scene, const CompareSettings& input,
   CompareSettings settings = input;
   ValidateCompareSettings(settings);
   const Progress progress(progress_stream, settings.progress);
-  GEARDYN_THROW_UNLESS(!scene.meshes.empty(),
+  const bool oscillator = scene.oscillator.has_value();
+  GEARDYN_THROW_UNLESS(oscillator || !scene.meshes.empty(),
                        scene.source << ": the scene has no mesh, so it has no model levels");
   CompareResult result;
   result.scene = scene.source;
-  result.mesh = settings.mesh.empty() ? scene.meshes.front().name : settings.mesh;
-  GEARDYN_THROW_UNLESS(std::any_of(scene.meshes.begin(), scene.meshes.end(),
-                                   [&](const MeshDef& m) { return m.name == result.mesh; }),
-                       "--mesh: the scene has no mesh '" << result.mesh << "'");
+  result.dimensionless = oscillator;
+  if (oscillator) {
+    // The oscillator's one mesh (oscillator_system.hpp).
+    GEARDYN_THROW_UNLESS(
+        settings.mesh.empty() || settings.mesh == "oscillator",
+        "--mesh: an oscillator scene has the one mesh 'oscillator', not '" << settings.mesh << "'");
+    result.mesh = "oscillator";
+  } else {
+    result.mesh = settings.mesh.empty() ? scene.meshes.front().name : settings.mesh;
+    GEARDYN_THROW_UNLESS(std::any_of(scene.meshes.begin(), scene.meshes.end(),
+                                     [&](const MeshDef& m) { return m.name == result.mesh; }),
+                         "--mesh: the scene has no mesh '" << result.mesh << "'");
+  }
   const auto has = [&](CompareAnalysis a) {
     return std::find(settings.analyses.begin(), settings.analyses.end(), a) !=
            settings.analyses.end();
@@ -126,7 +136,10 @@ CompareResult RunCompare(const Scene& scene, const CompareSettings& input,
   if (settings.levels.empty()) {
     // Defaults: every level but the contact model (seconds per speed: ask for it by name).
     for (const CompareLevelInfo& l : CompareLevels()) {
-      if (l.name != "contact" && ParseMeshModelLevel(l.name)) settings.levels.push_back(l.name);
+      const bool oscillator_level = l.name == "slices" || l.name == "torsional" || l.name == "lti";
+      if (l.name != "contact" && ParseMeshModelLevel(l.name) && (!oscillator || oscillator_level)) {
+        settings.levels.push_back(l.name);
+      }
     }
   }
   GEARDYN_THROW_UNLESS(
@@ -135,7 +148,7 @@ CompareResult RunCompare(const Scene& scene, const CompareSettings& input,
         !has(CompareAnalysis::kSimulate) && settings.levels.size() == 1),
       "--levels: the contact level has modes, Floquet and harmonic balance of none; it needs "
       "--analyses simulate");
-  result.operating_mesh_frequency_hz = scene.MeshFrequencyHz(scene.meshes.front());
+  result.operating_mesh_frequency_hz = scene.NominalMeshFrequencyHz();
   if (wants_dte) {
     if (settings.mesh_frequency.empty()) {
       GEARDYN_THROW_UNLESS(result.operating_mesh_frequency_hz > 0.0,
@@ -163,7 +176,7 @@ CompareResult RunCompare(const Scene& scene, const CompareSettings& input,
   std::vector<std::string> match_overrides;  // the same for the charts (they reload the scene)
   const bool has_contact =
       std::find(settings.levels.begin(), settings.levels.end(), "contact") != settings.levels.end();
-  if (has_contact && settings.match_contact && has(CompareAnalysis::kSimulate)) {
+  if (has_contact && settings.match_contact && has(CompareAnalysis::kSimulate) && !oscillator) {
     progress.Line("contact: matching the other levels' mesh stiffness and damping");
     try {
       SceneSystemOptions o;
@@ -230,7 +243,16 @@ CompareResult RunCompare(const Scene& scene, const CompareSettings& input,
       result.runs.push_back(std::move(run));
       continue;
     }
-    const Scene at_level = SceneAtLevel(level == "contact" ? scene : matched, level);
+    Scene at_level;
+    try {
+      at_level = SceneAtLevel(level == "contact" ? scene : matched, level);
+    } catch (const InvalidInput& e) {
+      GEARDYN_THROW_UNLESS(!levels_given,
+                           "--levels: the scene has no level '" << level << "': " << e.what());
+      for (const CompareAnalysis a : settings.analyses) run.skipped[a] = e.what();
+      result.runs.push_back(std::move(run));
+      continue;
+    }
     // One build per need: without ε for modes and Floquet (as `geardyn modes`/`floquet`), with
     // it for the DTE; the contact level only for the time domain.
     const auto build = [&](bool with_epsilon, bool time_domain) {
@@ -307,6 +329,7 @@ CompareResult RunCompare(const Scene& scene, const CompareSettings& input,
         for (const MeshDef& m : scene.meshes) {
           chart.overrides.push_back("mesh." + m.name + ".model=" + level);
         }
+        if (oscillator) chart.overrides.push_back("oscillator.model=" + level);
         chart.x = ParseChartAxis("--chart-x", settings.chart_x);
         chart.y = ParseChartAxis("--chart-y", settings.chart_y);
         chart.floquet.tolerance = kChartTolerance;
@@ -335,7 +358,7 @@ CompareResult RunCompare(const Scene& scene, const CompareSettings& input,
       } else {
         std::optional<SceneSystem> forced;
         try {
-          if (level == "lti") {
+          if (level == "lti" && !oscillator) {
             std::string why;
             if (std::optional<Scene> loaded = LtiWithLoadedSte(matched, &why)) {
               SceneSystemOptions o;

@@ -152,6 +152,8 @@ struct LevelComparison {
 struct CompareResult {
   std::string scene;
   std::string mesh;  ///< the compared mesh
+  /// An oscillator scene (Scene::oscillator): the DTE is the dimensionless x, not metres.
+  bool dimensionless = false;
   double operating_mesh_frequency_hz = 0.0;
   std::vector<double> frequencies_hz;                ///< the DTE grid
   std::vector<LevelRun> runs;                        ///< in level order
