@@ -165,6 +165,9 @@ Command AddCompareCommand(CLI::App& app) {
                   "(default 0.05)");
   cmd->add_option("--harmonics", opts->settings.nonlinear_harmonics,
                   "harmonics H of the nonlinear harmonic balance (default 24)");
+  cmd->add_option("--branch-search", opts->settings.branch_search,
+                  "nonlinear HB: frequencies searched for branches off the traced curve "
+                  "(default 8, 0: off; as `geardyn hb --branch-search`)");
   cmd->add_option("--simulate-tolerance", opts->settings.simulate_tolerance,
                   "time domain: local relative error per step (default 1e-6)");
   cmd->add_option("--steady-tolerance", opts->settings.steady_tolerance,

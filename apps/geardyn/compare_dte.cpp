@@ -78,6 +78,7 @@ LevelDte NonlinearDte(const SystemModel& model, int mesh, const std::vector<doub
   const auto start = std::chrono::steady_clock::now();
   SystemNhbOptions options;
   options.hb.harmonics = settings.nonlinear_harmonics;
+  options.continuation.branch_search = settings.branch_search;
   options.compute_element_forces = false;
   std::vector<SystemNhbPoint> points;
   const int n = static_cast<int>(grid.size());

@@ -71,6 +71,8 @@ void ValidateCompareSettings(const CompareSettings& s) {
   GEARDYN_THROW_UNLESS(
       s.nonlinear_harmonics >= 1 && s.nonlinear_harmonics <= 512,
       "--harmonics: the nonlinear HB's H must be in [1, 512], got " << s.nonlinear_harmonics);
+  GEARDYN_THROW_UNLESS(s.branch_search >= 0 && s.branch_search <= 1000,
+                       "--branch-search: must be in [0, 1000], got " << s.branch_search);
   GEARDYN_THROW_UNLESS(std::isfinite(s.simulate_tolerance) && s.simulate_tolerance >= 1e-14 &&
                            s.simulate_tolerance <= 1e-2,
                        "--simulate-tolerance: the local relative error per step must be in "

@@ -61,11 +61,14 @@ struct CompareSettings {
   double frequency_tolerance = 0.01;      ///< |Δf/f| accepted as agreement [-]
   double dte_tolerance = 0.05;            ///< |d| accepted as agreement [-] (of the ref peak)
   int nonlinear_harmonics = 24;           ///< H of the nonlinear HB
-  double simulate_tolerance = 1e-6;       ///< local relative error of the time integration
-  int max_periods = 3000;                 ///< time domain: periods before not_converged
-  double steady_tolerance = 1e-6;  ///< time domain: relative period-to-period change of steady
-  int threads = 0;                 ///< time domain: OpenMP threads (0: default)
-  bool progress = false;           ///< progress lines on the error stream
+  /// Nonlinear HB: frequencies where Newton starts from scaled contact guesses to find branches
+  /// off the traced curve (SystemNhbOptions; `geardyn hb --branch-search`), 0: off.
+  int branch_search = 8;
+  double simulate_tolerance = 1e-6;  ///< local relative error of the time integration
+  int max_periods = 3000;            ///< time domain: periods before not_converged
+  double steady_tolerance = 1e-6;    ///< time domain: relative period-to-period change of steady
+  int threads = 0;                   ///< time domain: OpenMP threads (0: default)
+  bool progress = false;             ///< progress lines on the error stream
   /// With the contact level: the other levels take the contact model's mean mesh stiffness and
   /// its law's damping at the mean load (overlay_match.hpp), so that they model the same teeth
   /// (ISO 6336's stiffness and the scene's mesh damping otherwise).
@@ -92,7 +95,7 @@ struct LevelDte {
   std::vector<double> jumps_hz;  ///< jump frequencies of the level (nonlinear HB folds, sweeps)
   Summary summary;
   double wall_time_s = 0.0;
-  /// True when the up and down branches differ somewhere by more than 1e-6 of the peak.
+  /// True when the up and down branches differ somewhere by more than 1 % of the peak.
   bool multivalued = false;
 };
 

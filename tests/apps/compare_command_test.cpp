@@ -139,6 +139,80 @@ TEST(CompareCommandTest, TwoLevelsEqualSeparateCallsOfTheCommands) {
   EXPECT_GT(max_abs, 0.0);  // the helical 4-DOF form is not the 6-DOF one
 }
 
+TEST(CompareCommandTest, KahramanSinghOscillatorLevelsAgreeWhereTheTheorySaysSo) {
+  // x'' + 2ζx' + g(x) = F_m + F_a cos Ωt with α = 0: the LTV (torsional) and LTI levels are the
+  // same equation, and while the teeth stay in contact their alternating response is the linear
+  // FRF F_a/|1 − r² + 2iζr| (RMS /√2) with r = Ω/ω_n = the grid value (the model is scaled to a
+  // 1 Hz natural frequency). Below r ≈ 0.7 the amplitude (< 0.04) stays far below the mean
+  // deflection F_m = 0.1, so the clearance level loses no contact there and agrees too.
+  const double zeta = 0.05, fa = 0.02;
+  const json r = RunJson({"compare", "builtin:kahraman-singh-oscillator", "--levels",
+                          "slices,torsional,lti", "--analyses", "modes,hb", "--mesh-frequency",
+                          "0.3:1.6:14", "--harmonics", "16", "--branch-search", "0"});
+  EXPECT_EQ(r["references"]["dte"], "slices");
+  const auto grid = r["frequencies_hz"].get<std::vector<double>>();
+  const json& torsional = Level(r, "torsional");
+  const json& lti = Level(r, "lti");
+  const json& slices = Level(r, "slices");
+  for (std::size_t k = 0; k < grid.size(); ++k) {
+    const double ratio = grid[k];
+    const double closed = fa / std::sqrt(2.0) / std::hypot(1.0 - ratio * ratio, 2.0 * zeta * ratio);
+    EXPECT_NEAR(torsional["dte"]["rms_up_m"][k].get<double>(), closed, 1e-9 * closed) << ratio;
+    EXPECT_NEAR(lti["dte"]["rms_up_m"][k].get<double>(), closed, 1e-9 * closed) << ratio;
+    if (ratio < 0.7) {
+      EXPECT_NEAR(slices["dte"]["rms_up_m"][k].get<double>(), closed, 1e-6 * closed) << ratio;
+    }
+  }
+  // One mode at the 1 Hz natural frequency in every level, matched with MAC 1.
+  for (const json* l : {&torsional, &lti}) {
+    const json& m = (*l)["comparison"]["modes"][0];
+    EXPECT_NEAR(m["hz"].get<double>(), 1.0, 1e-12);
+    EXPECT_NEAR(m["mac"].get<double>(), 1.0, 1e-12);
+  }
+  // Near the resonance the clearance opens: the linear levels differ from it there.
+  EXPECT_EQ(torsional["comparison"]["verdict"]["dte"], "differs");
+}
+
+TEST(CompareCommandTest, ChartsOfTheLtiLevelHaveNoParametricInstability) {
+  // An LTI system cannot be parametrically unstable: with damping every point of its chart is
+  // stable, while the LTV level of the same pair has the principal tongue of its mesh mode (the
+  // stiffness variation is raised to make it wide). Each level's chart equals `geardyn
+  // stability-chart` of the scene at that level.
+  const std::vector<std::string> sets = {
+      "--set", "mesh.pinion-wheel.parameters={form=\"fourier\", stiffness=[4e8, 1.2e8, 0]}",
+      "--set", "mesh.pinion-wheel.damping_ratio=0.01"};
+  std::vector<std::string> args = {"compare",    "builtin:helical-pair",
+                                   "--levels",   "blankenship_singh,lti",
+                                   "--analyses", "floquet",
+                                   "--chart-x",  "operating_point.speed_rpm=30000:60000:7",
+                                   "--chart-y",  "mesh.pinion-wheel.damping_ratio=0.005:0.02:2"};
+  args.insert(args.end(), sets.begin(), sets.end());
+  const json r = RunJson(args);
+  const json& lti = Level(r, "lti");
+  const json& bs = Level(r, "blankenship_singh");
+  ASSERT_TRUE(lti.contains("chart"));
+  EXPECT_EQ(lti["chart"]["unstable_points"], 0);
+  EXPECT_EQ(lti["chart"]["undetermined_points"], 0);
+  EXPECT_GT(bs["chart"]["unstable_points"].get<int>(), 0);
+  // The agreement is the share of B–S's points that are stable too.
+  const double points = bs["chart"]["grid_points"].get<double>();
+  EXPECT_NEAR(lti["comparison"]["chart_agreement"].get<double>(),
+              1.0 - bs["chart"]["unstable_points"].get<double>() / points, 1e-12);
+  // Against the chart command at the B–S level.
+  std::vector<std::string> chart = {"stability-chart",
+                                    "builtin:helical-pair",
+                                    "--x",
+                                    "operating_point.speed_rpm=30000:60000:7",
+                                    "--y",
+                                    "mesh.pinion-wheel.damping_ratio=0.005:0.02:2",
+                                    "--set",
+                                    "mesh.pinion-wheel.model=blankenship_singh"};
+  chart.insert(chart.end(), sets.begin(), sets.end());
+  const json c = RunJson(chart);
+  EXPECT_EQ(bs["chart"]["unstable_points"], c["num_unstable_points"]);
+  EXPECT_EQ(bs["chart"]["grid_points"], c["num_points"]);
+}
+
 TEST(CompareCommandTest, DefaultLevelsSkipWhatTheSceneCannotBuildWithTheReason) {
   // User K tables: no contact lines, so no slices (skipped, not an error, by default).
   const CliRun run = RunGeardyn(
