@@ -145,7 +145,7 @@ std::string ChartSvg(const SceneChart& run, const std::string& title) {
   spec.max_abs_multiplier = c.max_abs_multiplier;
   spec.stable = c.stable;
   spec.ok = c.ok;
-  for (const TransitionCurve& t : c.curves) spec.curves.push_back({t.x, t.y, t.closed});
+  for (const TransitionCurve& t : c.curves) spec.curves.push_back({t.x, t.y, t.closed, "", ""});
   // Each region's label at its most unstable point (always inside the region), or, when that
   // place is taken, at its next most unstable points (RenderRegionSvg lays them out).
   std::vector<std::vector<int>> points(c.regions.size());
