@@ -8,6 +8,7 @@
 
 #include "geardyn/analyses/floquet_verdict.hpp"
 #include "geardyn/region_plot.hpp"
+#include "geardyn/stability_chart_runner.hpp"
 #include "geardyn/svg_plot.hpp"
 
 namespace geardyn::app {
@@ -463,16 +464,8 @@ std::string RenderCompareChartPlot(const CompareResult& r) {
   }
   if (ref == nullptr) return "";
   const StabilityChartResult& c = *ref->chart;
-  RegionPlotSpec spec;
-  spec.title =
-      "Stability charts of the model levels: " + r.scene + " (regions: " + ref->level + ")";
-  spec.x_label = c.x_axis.name;
-  spec.y_label = c.y_axis.name;
-  for (int i = 0; i < c.x_axis.num_points; ++i) spec.x_values.push_back(c.x_axis.Value(i));
-  for (int i = 0; i < c.y_axis.num_points; ++i) spec.y_values.push_back(c.y_axis.Value(i));
-  spec.max_abs_multiplier = c.max_abs_multiplier;
-  spec.stable = c.stable;
-  spec.ok = c.ok;
+  RegionPlotSpec spec = MakeRegionPlotGrid(
+      c, "Stability charts of the model levels: " + r.scene + " (regions: " + ref->level + ")");
   std::size_t index = 0;
   for (const LevelRun& run : r.runs) {
     const std::string colour = PlotColour(index++);

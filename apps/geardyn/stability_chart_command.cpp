@@ -136,15 +136,7 @@ std::string CurvesCsv(const StabilityChartResult& c) {
 
 std::string ChartSvg(const SceneChart& run, const std::string& title) {
   const StabilityChartResult& c = run.chart;
-  RegionPlotSpec spec;
-  spec.title = title;
-  spec.x_label = c.x_axis.name;
-  spec.y_label = c.y_axis.name;
-  for (int i = 0; i < c.x_axis.num_points; ++i) spec.x_values.push_back(c.x_axis.Value(i));
-  for (int i = 0; i < c.y_axis.num_points; ++i) spec.y_values.push_back(c.y_axis.Value(i));
-  spec.max_abs_multiplier = c.max_abs_multiplier;
-  spec.stable = c.stable;
-  spec.ok = c.ok;
+  RegionPlotSpec spec = MakeRegionPlotGrid(c, title);
   for (const TransitionCurve& t : c.curves) spec.curves.push_back({t.x, t.y, t.closed, "", ""});
   // Each region's label at its most unstable point (always inside the region), or, when that
   // place is taken, at its next most unstable points (RenderRegionSvg lays them out).

@@ -11,6 +11,7 @@
 #include "geardyn/common/errors.hpp"
 #include "geardyn/models/scene/scene_reader.hpp"
 #include "geardyn/models/system/scene_system.hpp"
+#include "geardyn/region_plot.hpp"
 
 namespace geardyn::app {
 namespace {
@@ -289,6 +290,19 @@ SceneChart ComputeSceneStabilityChart(const SceneChartSettings& settings) {
   out.refined_points = context.refined();
   out.prepared_rows = context.prepared_rows();
   return out;
+}
+
+RegionPlotSpec MakeRegionPlotGrid(const StabilityChartResult& c, const std::string& title) {
+  RegionPlotSpec spec;
+  spec.title = title;
+  spec.x_label = c.x_axis.name;
+  spec.y_label = c.y_axis.name;
+  for (int i = 0; i < c.x_axis.num_points; ++i) spec.x_values.push_back(c.x_axis.Value(i));
+  for (int i = 0; i < c.y_axis.num_points; ++i) spec.y_values.push_back(c.y_axis.Value(i));
+  spec.max_abs_multiplier = c.max_abs_multiplier;
+  spec.stable = c.stable;
+  spec.ok = c.ok;
+  return spec;
 }
 
 }  // namespace geardyn::app

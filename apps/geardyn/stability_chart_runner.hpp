@@ -98,4 +98,10 @@ struct SceneChart {
 ///   path or value.
 SceneChart ComputeSceneStabilityChart(const SceneChartSettings& settings);
 
+struct RegionPlotSpec;  // region_plot.hpp
+
+/// @brief The chart's grid in a region plot: axis names and values, max|λ|, verdicts (no curves,
+/// labels or markers).
+RegionPlotSpec MakeRegionPlotGrid(const StabilityChartResult& chart, const std::string& title);
+
 }  // namespace geardyn::app
