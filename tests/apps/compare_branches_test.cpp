@@ -34,18 +34,19 @@ double C(double f) { return 0.5 - 0.3 * (f - 1.4) / 1.1; }
 
 TEST(CompareBranchesTest, SweepsFollowTheirBranchUntilItEnds) {
   Fold c;
-  for (double f = 1.0; f <= 1.8 + 1e-12; f += 0.05) c.Add(f, A(f), 1);
-  for (double f = 1.75; f >= 1.45 - 1e-12; f -= 0.05) c.Add(f, 2.0 + (f - 1.4) * 2.5, 0);
-  for (double f = 1.4; f <= 2.5 + 1e-12; f += 0.05) c.Add(f, C(f), 1);
+  // Integer steps (exact ends); the branches reach past the grid's ends 1.0 and 2.5.
+  for (int k = 0; k <= 17; ++k) c.Add(0.95 + 0.05 * k, A(0.95 + 0.05 * k), 1);  // to 1.8
+  for (int k = 1; k <= 7; ++k) c.Add(1.8 - 0.05 * k, 2.0 + (0.4 - 0.05 * k) * 2.5, 0);
+  for (int k = 0; k <= 24; ++k) c.Add(1.4 + 0.05 * k, C(1.4 + 0.05 * k), 1);  // to 2.6
   std::vector<double> grid;
-  for (int k = 0; k <= 15; ++k) grid.push_back(1.0 + 0.1 * k);
+  for (int k = 0; k <= 14; ++k) grid.push_back(1.05 + 0.1 * k);  // none on the folds 1.4, 1.8
   std::vector<double> up, down, up_p2p, down_p2p;
   ResampleNhbBranches(c.hz, c.rms, c.p2p, c.stable, c.segment, grid, &up, &down, &up_p2p,
                       &down_p2p);
   for (std::size_t k = 0; k < grid.size(); ++k) {
     const double f = grid[k];
-    const double expected_up = f <= 1.8 + 1e-9 ? A(f) : C(f);
-    const double expected_down = f >= 1.4 - 1e-9 ? C(f) : A(f);
+    const double expected_up = f < 1.8 ? A(f) : C(f);
+    const double expected_down = f > 1.4 ? C(f) : A(f);
     EXPECT_NEAR(up[k], expected_up, 1e-9) << "up at " << f;
     EXPECT_NEAR(down[k], expected_down, 1e-9) << "down at " << f;
     EXPECT_NEAR(up_p2p[k], 2.0 * expected_up, 1e-9);

@@ -72,7 +72,7 @@ TEST(LoadSceneTest, UnknownBuiltinListsTheNames) {
   EXPECT_THROWS_MESSAGE(
       LoadScene("builtin:helical-pear"), SceneError,
       R"(^builtin:helical-pear: no built-in scene named 'helical-pear' \(did you )"
-      R"(mean 'helical-pair'\?\); built-in scenes: geared-shafts, helical-pair, )");
+      R"(mean 'helical-pair'\?\); built-in scenes: blankenship-kahraman-oscillator, geared-shafts, helical-pair, )");
 }
 
 TEST(LoadSceneTest, ReadsAFileAndNamesItInErrors) {
