@@ -14,6 +14,7 @@
 #include "geardyn/models/system/scene_system.hpp"
 #include "geardyn/overlay_match.hpp"
 #include "geardyn/stability_chart_runner.hpp"
+#include "geardyn/system/mesh_core.hpp"
 
 namespace geardyn::app {
 namespace {
@@ -404,6 +405,12 @@ CompareResult RunCompare(const Scene& scene, const CompareSettings& input,
               : info.linear ? LinearDte(forced->model, mesh, result.frequencies_hz, &run.warnings)
                             : NonlinearDte(forced->model, mesh, result.frequencies_hz, settings);
           dte.multivalued = IsMultivalued(dte);
+          const auto* linear_core = std::get_if<LinearMeshCore>(&forced->model.meshes()[mesh].core);
+          if (by_time && linear_core != nullptr && linear_core->has_transmission_error()) {
+            run.warnings.push_back(
+                "time domain: a linear level's DTE is δ_η − ε_η (probes.hpp), not the loaded TE "
+                "δ_η the other levels report; compare it with --analyses hb");
+          }
           if (!dte.summary.ok()) result.ok = false;
           for (const std::string& w : dte.summary.warnings) run.warnings.push_back(w);
           run.dte = std::move(dte);
