@@ -446,9 +446,6 @@ std::string RenderCompareDtePlot(const CompareResult& r) {
         diff.series.push_back({"", r.frequencies_hz, scaled(c->dte->down, 100.0), true, colour});
       }
     }
-    for (const double j : d.jumps_hz) {
-      rms.markers.push_back({j, kNaN, "", colour});
-    }
   }
   spec.panels.push_back(rms);
   if (!diff.series.empty()) spec.panels.push_back(diff);

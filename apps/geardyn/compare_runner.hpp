@@ -92,7 +92,7 @@ struct LevelDte {
   /// (1 stable, 0 unstable, −1 undetermined) and segment per point.
   std::vector<double> curve_hz, curve_rms;
   std::vector<int> curve_stable, curve_segment;
-  std::vector<double> jumps_hz;  ///< jump frequencies of the level (nonlinear HB folds, sweeps)
+  std::vector<double> jumps_hz;  ///< jump frequencies of the traced nonlinear HB (empty otherwise)
   Summary summary;
   double wall_time_s = 0.0;
   /// True when the up and down branches differ somewhere by more than 1 % of the peak.
