@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages geardyn needs, only those that are missing.
 set -euo pipefail
-packages=(build-essential cmake pkg-config libeigen3-dev libarpack2-dev liblapack-dev libfftw3-dev libgsl-dev
+packages=(build-essential cmake ninja-build pkg-config libeigen3-dev libarpack2-dev liblapack-dev libfftw3-dev libgsl-dev
           libgtest-dev libgmock-dev libbenchmark-dev libtomlplusplus-dev libcli11-dev
           nlohmann-json3-dev)
 missing=()

@@ -5,6 +5,7 @@
 
 #include "geardyn/command.hpp"
 #include "geardyn/common/errors.hpp"
+#include "geardyn/interrupt.hpp"
 
 namespace geardyn::app {
 namespace {
@@ -49,7 +50,16 @@ int RunCli(const std::vector<std::string>& args, std::ostream& out, std::ostream
   try {
     for (const Command& command : commands) {
       if (command.cli->parsed()) {
-        return command.run_with_err ? command.run_with_err(out, err) : command.run(out);
+        // SIGINT/SIGTERM stop the long analyses, which return what they computed; the files are
+        // written marked as partial (output_files.hpp) and the exit code says so.
+        const InterruptScope interrupt_scope;
+        const int code = command.run_with_err ? command.run_with_err(out, err) : command.run(out);
+        if (Interrupted() && code != kExitInterrupted) {
+          err << "geardyn: interrupted (SIGINT/SIGTERM); the results computed before it were "
+                 "written, marked as partial\n";
+          return kExitInterrupted;
+        }
+        return code;
       }
     }
   } catch (const InvalidInput& e) {

@@ -14,7 +14,7 @@ enum ExitCode : int {
   kExitNumericalIssue = 1,  ///< an analysis reported a status other than success
   kExitBadInput = 2,        ///< bad command line, unreadable or invalid scene
   kExitInternalError = 3,   ///< a bug in geardyn (an internal invariant failed)
-  kExitInterrupted = 130,   ///< interrupted by SIGINT (128 + 2); results so far were written
+  kExitInterrupted = 130,   ///< interrupted by SIGINT or SIGTERM; results so far were written
 };
 
 /// @brief Runs the geardyn command.

@@ -11,6 +11,7 @@
 #include "geardyn/analyses/time_response.hpp"
 #include "geardyn/common/check.hpp"
 #include "geardyn/compare_internal.hpp"
+#include "geardyn/interrupt.hpp"
 #include "geardyn/models/scene/mesh_model.hpp"
 #include "geardyn/models/system/scene_system.hpp"
 #include "geardyn/system/mesh_core.hpp"
@@ -37,6 +38,7 @@ LevelDte LinearDte(const SystemModel& model, int mesh, const std::vector<double>
   const bool add_epsilon = linear != nullptr && linear->has_transmission_error();
   options.keep_harmonics = add_epsilon;
   options.compute_forces = false;
+  options.cancel = CancelFlag();
   const HbSweepResult sweep = SweepHarmonicBalance(model, grid, options);
   out.summary = sweep.summary;
   bool warned = false;
@@ -93,6 +95,7 @@ LevelDte NonlinearDte(const SystemModel& model, int mesh, const std::vector<doub
     options.continuation.max_omega_step = 2.0 * std::numbers::pi * (grid.back() - grid.front()) / n;
     options.continuation.initial_step = std::min(options.continuation.initial_step, 1.0 / n);
     options.continuation.max_points = std::max(options.continuation.max_points, 20 * n);
+    options.continuation.cancel = CancelFlag();
     SystemNhbCurve curve = TraceSystemNonlinearHb(model, options);
     out.summary = curve.summary;
     points = std::move(curve.points);
@@ -159,7 +162,7 @@ LevelDte TimeDomainDte(const SystemModel& model, int mesh, const std::vector<dou
   };
   if (n == 1) {
     const TimeResponse r =
-        SimulateSteadyState(model, grid.front(), options.response, on_progress, nullptr);
+        SimulateSteadyState(model, grid.front(), options.response, on_progress, CancelFlag());
     out.summary = r.summary;
     TimeSweepPoint p;
     p.status = r.summary.status;
@@ -171,7 +174,7 @@ LevelDte TimeDomainDte(const SystemModel& model, int mesh, const std::vector<dou
     keep(p, 0, true);
     keep(p, 0, false);
   } else {
-    const TimeSweep sweep = SimulateSweep(model, grid, options, on_progress, nullptr);
+    const TimeSweep sweep = SimulateSweep(model, grid, options, on_progress, CancelFlag());
     out.summary = sweep.summary;
     for (const TimeSweepPoint& p : sweep.points) {
       const auto it = std::lower_bound(grid.begin(), grid.end(),

@@ -28,6 +28,7 @@
 #include "geardyn/command.hpp"
 #include "geardyn/common/check.hpp"
 #include "geardyn/hb_report.hpp"
+#include "geardyn/interrupt.hpp"
 #include "geardyn/models/scene/scene_reader.hpp"
 #include "geardyn/models/system/oscillator_system.hpp"
 #include "geardyn/models/system/scene_system.hpp"
@@ -159,6 +160,7 @@ int RunNonlinearHb(const HbCommandOptions& opts, const Scene& scene, const Scene
         err << line;
       };
     }
+    options.continuation.cancel = CancelFlag();
     curve = TraceSystemNonlinearHb(built.model, options);
     if (settings.progress) {
       char line[96];
@@ -193,7 +195,8 @@ int RunLinearHb(const HbCommandOptions& opts, const Scene& scene, const SceneSys
                        "--tolerance: chooses H (H = 8, 16, ... until the RMS DTE changes by at "
                        "most the tolerance) and is not used with a fixed --harmonics "
                            << opts.settings.harmonics << "; give one of them");
-  const HbOptions options = MakeHbOptions(opts.settings);
+  HbOptions options = MakeHbOptions(opts.settings);
+  options.cancel = CancelFlag();
   HbProgress progress;
   if (opts.settings.progress) {
     progress = [&err](int done, int total) {
@@ -206,7 +209,7 @@ int RunLinearHb(const HbCommandOptions& opts, const Scene& scene, const SceneSys
   // The Floquet verdict of every point (--stability none: skipped). monodromy → kAuto (exact
   // steps for piecewise-constant K, C; Magnus for smooth ones), hill → Hill's method.
   std::unique_ptr<HbStabilitySweep> stability;
-  if (opts.stability != "none") {
+  if (opts.stability != "none" && !Interrupted()) {
     FloquetOptions floquet;
     floquet.method = opts.stability == "hill" ? FloquetMethod::kHill : FloquetMethod::kAuto;
     floquet.tolerance = kLinearStabilityTolerance;

@@ -15,7 +15,13 @@ namespace geardyn::app {
 /// validator of every scene command (commands.cpp), so that a bad `--out` fails in milliseconds.
 std::string PrepareOutputDirectory(const std::filesystem::path& dir);
 
-/// @brief Writes `text` to DIR/name, creating DIR if needed.
+/// @brief `text` of the file `name` marked as partial, by its extension: a `"partial": true`
+/// first member of a JSON object, an XML comment in an SVG, a leading `# partial: …` line in a
+/// CSV or text file.
+std::string MarkPartial(const std::string& name, const std::string& text);
+
+/// @brief Writes `text` to DIR/name atomically (a temporary file renamed over it), creating DIR if
+/// needed. After an interrupt (interrupt.hpp) the text is marked as partial (MarkPartial).
 /// @throws InvalidInput naming the path and the reason when the directory or file cannot be
 /// written.
 std::filesystem::path WriteOutputFile(const std::filesystem::path& dir, const std::string& name,

@@ -12,10 +12,8 @@
 // written whatever the outcome: a failed run (status ≠ success, exit 1) or one interrupted by
 // SIGINT (exit 130) keeps what was computed before.
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <numbers>
@@ -28,6 +26,7 @@
 #include "geardyn/command.hpp"
 #include "geardyn/common/check.hpp"
 #include "geardyn/hb_report.hpp"
+#include "geardyn/interrupt.hpp"
 #include "geardyn/mesh_parameters_export.hpp"
 #include "geardyn/models/scene/scene_reader.hpp"
 #include "geardyn/models/system/scene_system.hpp"
@@ -74,25 +73,6 @@ struct SimulateOptions {
   bool full_period = false;  // --full-period: no symmetry shift in the steady test
   bool overlay_hb = false;
   bool progress = false;
-};
-
-// SIGINT → cancel flag (lock-free atomic: safe in a signal handler).
-std::atomic<bool> g_cancel{false};
-extern "C" void OnInterrupt(int) { g_cancel.store(true); }
-
-// Installs OnInterrupt for the lifetime of the object and restores the previous handler.
-class InterruptScope {
- public:
-  InterruptScope() {
-    g_cancel.store(false);
-    previous_ = std::signal(SIGINT, OnInterrupt);
-  }
-  ~InterruptScope() { std::signal(SIGINT, previous_ == SIG_ERR ? SIG_DFL : previous_); }
-  InterruptScope(const InterruptScope&) = delete;
-  InterruptScope& operator=(const InterruptScope&) = delete;
-
- private:
-  void (*previous_)(int) = SIG_DFL;
 };
 
 // The SceneSystemOptions of the time-domain runs: analysis "simulate", and tooth-contact meshes
@@ -498,9 +478,8 @@ int RunSimulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) 
   std::unique_ptr<TimeResponse> single;
   std::unique_ptr<SystemModel> single_model;
   std::vector<std::pair<double, Summary>> summaries;
-  const InterruptScope interrupt_scope;
   for (const double torque : torques) {
-    if (g_cancel.load()) break;
+    if (Interrupted()) break;
     const Scene scene_t = AtTorque(scene, torque);
     const SceneSystem built = BuildSceneSystem(scene_t, TimeDomainSystemOptions());
     for (const std::string& w : built.warnings) {
@@ -519,7 +498,7 @@ int RunSimulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) 
     const TimeProgress progress = MakeProgress(o, err, torque, start);
     if (mode == SimulateMode::kSingle) {
       TimeResponse r = SimulateSteadyState(built.model, frequencies.front(), response_options,
-                                           progress, &g_cancel);
+                                           progress, CancelFlag());
       SimulatePoint p{torque,  "single", ToSweepPoint(r), ToString(r.integrator_used),
                       r.steps, r.events};
       points.push_back(p);
@@ -531,7 +510,7 @@ int RunSimulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) 
       }
     } else if (mode == SimulateMode::kIndependent) {
       const std::vector<TimeResponse> runs = SimulateSpeeds(
-          built.model, frequencies, response_options, o.threads, progress, &g_cancel);
+          built.model, frequencies, response_options, o.threads, progress, CancelFlag());
       for (const TimeResponse& r : runs) {
         points.push_back({torque, "independent", ToSweepPoint(r), ToString(r.integrator_used),
                           r.steps, r.events});
@@ -547,18 +526,18 @@ int RunSimulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) 
       sweep_options.up = o.sweep != "down";
       sweep_options.down = o.sweep != "up";
       const TimeSweep sweep =
-          SimulateSweep(built.model, frequencies, sweep_options, progress, &g_cancel);
+          SimulateSweep(built.model, frequencies, sweep_options, progress, CancelFlag());
       for (const TimeSweepPoint& p : sweep.points) {
         points.push_back({torque, ToString(p.branch), p, "", -1, -1});
       }
       for (const std::string& w : sweep.summary.warnings) warnings.push_back(w);
       summaries.emplace_back(torque, sweep.summary);
     }
-    if (o.overlay_hb && !g_cancel.load()) {
+    if (o.overlay_hb && !Interrupted()) {
       overlays.push_back(ComputeOverlay(o, scene_t, torque, frequencies, &warnings, err));
     }
   }
-  info.interrupted = g_cancel.load();
+  info.interrupted = Interrupted();
   info.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

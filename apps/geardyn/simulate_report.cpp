@@ -92,9 +92,9 @@ json MakeSimulateReport(const SimulateRunInfo& info, const std::vector<std::stri
   report["record_periods"] = info.record_periods;
   std::string message;
   Status status = WorstStatus(points, &message);
-  if (info.interrupted && status == Status::kSuccess) {
-    status = Status::kNotConverged;
-    message = "interrupted";
+  if (info.interrupted) {
+    status = Status::kInterrupted;
+    if (message.empty()) message = "interrupted";
   }
   report["status"] = StatusName(status);
   report["message"] = message;

@@ -9,6 +9,7 @@
 #include "geardyn/analyses/modal.hpp"
 #include "geardyn/analyses/prepared_floquet.hpp"
 #include "geardyn/common/errors.hpp"
+#include "geardyn/interrupt.hpp"
 #include "geardyn/models/scene/scene_reader.hpp"
 #include "geardyn/models/system/scene_system.hpp"
 #include "geardyn/region_plot.hpp"
@@ -257,6 +258,7 @@ SceneChart ComputeSceneStabilityChart(const SceneChartSettings& settings) {
   out.natural_frequencies_hz = NaturalFrequencies(*nominal.model);
 
   StabilityChartOptions options = settings.chart;
+  options.cancel = CancelFlag();
   options.first_mode_index = 0;  // mode numbers as `geardyn modes` prints them
   options.natural_frequencies_hz.clear();
   if (context.speed_axis() == 1) {  // a model per y row: its own frequencies

@@ -656,6 +656,12 @@ HbSweepResult SweepHarmonicBalance(const SystemModel& model,
   sweep.points.reserve(mesh_frequencies_hz.size());
   const int total = static_cast<int>(mesh_frequencies_hz.size());
   for (int i = 0; i < total; ++i) {
+    if (options.cancel != nullptr && options.cancel->load()) {
+      sweep.summary.status = Status::kInterrupted;
+      sweep.summary.message = "interrupted after " + std::to_string(i) + " of " +
+                              std::to_string(total) + " mesh frequencies";
+      break;
+    }
     sweep.points.push_back(solver.Solve(mesh_frequencies_hz[i]));
     const Summary& p = sweep.points.back().summary;
     for (const auto& [name, count] : p.counters) sweep.summary.counters[name] += count;
@@ -668,7 +674,7 @@ HbSweepResult SweepHarmonicBalance(const SystemModel& model,
   }
   // Every distinct warning of the points once, with the frequency range of per-point ones.
   sweep.summary.warnings = MergePointWarnings(sweep.points);
-  sweep.summary.counters["points"] = total;
+  sweep.summary.counters["points"] = static_cast<long>(sweep.points.size());
   sweep.summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return sweep;

@@ -276,6 +276,12 @@ NhbCurve TraceWithHarmonics(const NhbProblem& problem, const NhbOptions& options
   }
   std::vector<std::array<double, 2>> branch_norms{{omega, x.norm()}};
   while (static_cast<int>(curve.points.size()) < c.max_points) {
+    if (c.cancel != nullptr && c.cancel->load()) {
+      curve.summary.status = Status::kInterrupted;
+      curve.summary.message =
+          "interrupted after " + std::to_string(curve.points.size()) + " points";
+      break;
+    }
     // The step taken: ds, capped so that the predicted |ΔΩ| ≤ max_omega_step.
     double step = ds;
     if (c.max_omega_step > 0 && std::abs(t[m]) * so * step > c.max_omega_step) {

@@ -180,10 +180,13 @@ StabilityChartResult ComputeStabilityChart(const ChartAxis& x, const ChartAxis& 
   chart.stable.assign(n, 0);
   chart.region.assign(n, -1);
 
-  // Step 1: the grid.
+  // Step 1: the grid. A cancelled point is skipped: undetermined, counted apart.
+  std::vector<char> computed(n, 0);
   internal::ParallelFor(
       n, threads,
       [&](long i, int thread) {
+        if (options.cancel != nullptr && options.cancel->load()) return;
+        computed[i] = 1;
         const int ix = static_cast<int>(i % x.num_points);
         const int iy = static_cast<int>(i / x.num_points);
         const ChartPointResult r = evaluators[thread](ChartPoint{x.Value(ix), y.Value(iy), ix, iy});
@@ -205,7 +208,13 @@ StabilityChartResult ComputeStabilityChart(const ChartAxis& x, const ChartAxis& 
   chart.summary.counters["evaluations"] = n;
   chart.summary.counters["undetermined_points"] = failed;
   chart.summary.counters["threads"] = threads;
-  if (failed > 0) {
+  const long done = std::count(computed.begin(), computed.end(), char{1});
+  if (done < n) {
+    chart.summary.status = Status::kInterrupted;
+    chart.summary.message = "interrupted: " + std::to_string(done) + " of " + std::to_string(n) +
+                            " grid points computed, the others are undetermined; no transition "
+                            "curves traced";
+  } else if (failed > 0) {
     chart.summary.status = Status::kNumericalIssue;
     chart.summary.message = std::to_string(failed) + " of " + std::to_string(n) +
                             " grid points are undetermined (evaluation failed or its verdict is "
@@ -213,7 +222,9 @@ StabilityChartResult ComputeStabilityChart(const ChartAxis& x, const ChartAxis& 
   }
 
   // Step 2: transition curves; step 3: regions and labels.
-  if (options.trace_curves) internal::TraceTransitionCurves(evaluators, options, &chart);
+  if (options.trace_curves && done == n) {
+    internal::TraceTransitionCurves(evaluators, options, &chart);
+  }
   internal::FindRegions(options, &chart);
   chart.summary.counters["regions"] = static_cast<long>(chart.regions.size());
 

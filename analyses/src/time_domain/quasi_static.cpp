@@ -318,7 +318,7 @@ QuasiStaticResult SimulateQuasiStatic(const SystemModel& model, const QuasiStati
     VectorX previous;
     for (Eigen::Index s = 0; s < samples; ++s) {
       if (cancel != nullptr && cancel->load()) {
-        out.summary.status = Status::kNotConverged;
+        out.summary.status = Status::kInterrupted;
         out.summary.message = "cancelled";
         return s;
       }

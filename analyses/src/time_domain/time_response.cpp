@@ -77,7 +77,8 @@ std::string UndampedModesNote(const SystemModel& model) {
   return note.str();
 }
 
-/// Worse of two statuses (kSuccess < kToleranceNotMet < kNotConverged < kNumericalIssue).
+/// Worse of two statuses (kSuccess < kToleranceNotMet < kNotConverged < kNumericalIssue <
+/// kInterrupted: an interrupted sweep says so whatever its points did).
 Status Worse(Status a, Status b) {
   auto rank = [](Status s) {
     switch (s) {
@@ -89,8 +90,10 @@ Status Worse(Status a, Status b) {
         return 2;
       case Status::kNumericalIssue:
         return 3;
+      case Status::kInterrupted:
+        return 4;
     }
-    return 3;
+    return 4;
   };
   return rank(a) >= rank(b) ? a : b;
 }
@@ -346,7 +349,7 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
   // Transient: period by period until steady.
   for (int p = 0; p < so.max_periods; ++p) {
     if (cancel != nullptr && cancel->load()) {
-      summary.status = Status::kNotConverged;
+      summary.status = Status::kInterrupted;
       summary.message = "cancelled";
       failed = true;
       break;
@@ -573,7 +576,7 @@ TimeSweep SimulateSweep(const SystemModel& model, const std::vector<double>& fre
       continue;
     for (int i = 0; i < count; ++i) {
       if (cancel != nullptr && cancel->load()) {
-        sweep.summary.status = Worse(sweep.summary.status, Status::kNotConverged);
+        sweep.summary.status = Worse(sweep.summary.status, Status::kInterrupted);
         sweep.summary.message = "cancelled";
         sweep.summary.counters["points"] = static_cast<long>(sweep.points.size());
         return sweep;
@@ -613,7 +616,7 @@ TimeSweep SimulateSweep(const SystemModel& model, const std::vector<double>& fre
       if (!r.summary.ok()) {
         sweep.summary.status = Worse(sweep.summary.status, r.summary.status);
         if (sweep.summary.message.empty()) sweep.summary.message = r.summary.message;
-        if (r.summary.message == "cancelled") return sweep;
+        if (r.summary.status == Status::kInterrupted) return sweep;
         // Not steady within max_periods: the point is kept without a verdict and the sweep goes
         // on from its last state (a quasi-periodic or slowly settling response is still the
         // branch). A numerical failure ends the branch.

@@ -14,6 +14,8 @@ const char* StatusName(Status status) {
       return "numerical_issue";
     case Status::kToleranceNotMet:
       return "tolerance_not_met";
+    case Status::kInterrupted:
+      return "interrupted";
   }
   return "unknown";
 }

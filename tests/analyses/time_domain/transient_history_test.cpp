@@ -45,6 +45,7 @@ TEST(TransientHistory, CancelledRunKeepsItsLastCompletePeriod) {
     if (note.rfind("period 4,", 0) == 0) cancel.store(true);
   };
   const TimeResponse cancelled = SimulateSteadyState(model, kFm, Options(), progress, &cancel);
+  EXPECT_EQ(cancelled.summary.status, Status::kInterrupted);
   EXPECT_EQ(cancelled.summary.message, "cancelled");
   EXPECT_EQ(cancelled.steady, SteadyVerdict::kUndetermined);
   ASSERT_TRUE(cancelled.history_from_transient);

@@ -99,6 +99,7 @@
 /// from one thread at a time: FFTW planning is not thread-safe). Never prints.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -154,6 +155,10 @@ struct HbOptions {
   bool keep_harmonics = false;
   /// Dense or sparse harmonic storage (@file "Long hunting periods"); kAuto picks.
   HbHarmonicStorage harmonic_storage = HbHarmonicStorage::kAuto;
+  /// Optional cancel flag (e.g. set by a SIGINT handler), polled between the points of
+  /// SweepHarmonicBalance: once true the sweep returns the points solved so far with
+  /// Status::kInterrupted. Not owned; must outlive the sweep.
+  const std::atomic<bool>* cancel = nullptr;
   /// False (with the field, value and bound in `why`) on an invalid value.
   bool IsValid(std::string* why) const;
 };

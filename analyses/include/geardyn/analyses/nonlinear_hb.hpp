@@ -95,6 +95,7 @@
 /// harmonic 0; the others are copies shifted by ±ikω) — only for P = I (uncondensed problems).
 #pragma once
 
+#include <atomic>
 #include <array>
 #include <functional>
 #include <memory>
@@ -341,6 +342,9 @@ struct NhbContinuationOptions {
   /// Called after every traced point with (points so far, its Ω); empty: none. Never called
   /// concurrently; it must not throw.
   std::function<void(int points, double omega)> progress;
+  /// Optional cancel flag (e.g. set by a SIGINT handler), polled before every continuation step:
+  /// once true the curve ends with the points traced so far, Status::kInterrupted. Not owned.
+  const std::atomic<bool>* cancel = nullptr;
   /// Upper bound of max_points: every point keeps its harmonics (N·(2H+1) values) and its
   /// multipliers; 2·10⁶ points of a 24-harmonic, 12-DOF curve are already ≈ 10 GB.
   static constexpr int kMaxPoints = 2000000;

@@ -42,6 +42,7 @@
 /// thrown by an evaluator is rethrown after the parallel loop (the one of the lowest point index).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -134,6 +135,10 @@ struct StabilityChartOptions {
   int first_mode_index = 1;
   /// Called from the calling thread about every percent of the work; may be empty.
   ChartProgressCallback progress;
+  /// Optional cancel flag (e.g. set by a SIGINT handler), polled before every grid point: once
+  /// true the remaining points are skipped (undetermined, ok = 0) and the summary says
+  /// Status::kInterrupted with the count computed. Not owned; must outlive the chart.
+  const std::atomic<bool>* cancel = nullptr;
   /// False (with the field and value in `why`) on an invalid value.
   bool IsValid(std::string* why) const;
 };

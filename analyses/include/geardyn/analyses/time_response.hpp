@@ -223,7 +223,7 @@ struct TimeResponseOptions {
 
 /// @brief Integrates at mesh frequency f_m [Hz] until steady (see SteadyStateOptions), then
 /// records `record_periods` periods.
-/// @param[in] cancel optional flag: when it becomes true the run stops with kNotConverged and
+/// @param[in] cancel optional flag: when it becomes true the run stops with kInterrupted and
 ///   the message "cancelled", keeping what it has.
 /// @throws InvalidInput on f_m ≤ 0 or non-finite, invalid options, a wrong initial-state size,
 ///   or a model without meshes.

@@ -9,7 +9,9 @@
 namespace geardyn {
 
 /// Numerical outcome of an analysis. Never an exception: see errors.hpp for those.
-enum class Status { kSuccess, kNotConverged, kNumericalIssue, kToleranceNotMet };
+/// kInterrupted: the caller's cancel flag stopped the run; the result holds what was computed
+/// before it (every point that is there is complete).
+enum class Status { kSuccess, kNotConverged, kNumericalIssue, kToleranceNotMet, kInterrupted };
 
 /// @brief Text name of a status ("success", "not_converged", ...), stable for JSON output.
 const char* StatusName(Status status);
