@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <memory>
+#include <mutex>
 #include <numbers>
 
 #include "geardyn/analyses/modal.hpp"
@@ -53,6 +54,8 @@ struct Built {
   double mesh_hz = 0.0;
   double rpm = 0.0;
   double hz_per_rpm() const { return rpm > 0.0 ? mesh_hz / rpm : 0.0; }
+  /// Grid rows only: why the row's scene is invalid (model is null then); "" when valid.
+  std::string invalid;
 };
 
 class ChartContext {
@@ -96,7 +99,14 @@ class ChartContext {
     const ChartAxis axis{param.path, param.lo, param.hi, param.num_points};
     rows_.clear();
     for (int i = 0; i < axis.num_points; ++i) {
-      Built b = BuildParameter(param, axis.Value(i), speed);
+      Built b;
+      try {
+        b = BuildParameter(param, axis.Value(i), speed);
+      } catch (const InvalidInput& e) {  // its points are undetermined (Evaluate)
+        b.invalid = e.what();
+        rows_.push_back(std::move(b));
+        continue;
+      }
       // Every point of a row is a Floquet solve of this model at another speed: build the
       // frequency-independent part once (prepared_floquet.hpp).
       if (s_.prepare_rows)
@@ -110,7 +120,33 @@ class ChartContext {
 
   const std::vector<Built>& rows() const { return rows_; }
 
+  // A point whose scene is invalid (an interior value of an axis the scene refuses, e.g. a
+  // contact ratio below 1; both ends were checked before) is undetermined, not the end of the
+  // chart: the points before and after it are kept. The first reason goes to the warnings.
   ChartPointResult Evaluate(const ChartPoint& p) const {
+    try {
+      return EvaluateScene(p);
+    } catch (const InvalidInput& e) {
+      const std::lock_guard<std::mutex> lock(invalid_mutex_);
+      if (invalid_points_++ == 0) first_invalid_ = e.what();
+      ChartPointResult out;
+      out.ok = false;
+      return out;
+    }
+  }
+
+  /// Grid points whose scene was invalid, and the first reason ("" when none).
+  long invalid_points() const {
+    const std::lock_guard<std::mutex> lock(invalid_mutex_);
+    return invalid_points_;
+  }
+  std::string first_invalid() const {
+    const std::lock_guard<std::mutex> lock(invalid_mutex_);
+    return first_invalid_;
+  }
+
+ private:
+  ChartPointResult EvaluateScene(const ChartPoint& p) const {
     double f_m = 0.0;
     std::shared_ptr<const SystemModel> model;
     std::shared_ptr<const PreparedFloquet> prepared;
@@ -125,6 +161,7 @@ class ChartContext {
       const Built b =
           index >= 0 ? rows_[index]
                      : BuildParameter(on_x ? s_.y : s_.x, on_x ? p.y : p.x, on_x ? s_.x : s_.y);
+      if (!b.invalid.empty()) throw InvalidInput(b.invalid);
       model = b.model;
       prepared = b.prepared;
       f_m = b.hz_per_rpm() * rpm;
@@ -156,13 +193,15 @@ class ChartContext {
     return out;
   }
 
- private:
   const SceneChartSettings& s_;
   int speed_axis_ = 0;  // 0 none, 1 x, 2 y
   std::vector<Built> rows_;
   long prepared_rows_ = 0;
   mutable std::atomic<long> builds_{0};
   mutable std::atomic<long> refined_{0};
+  mutable std::mutex invalid_mutex_;
+  mutable long invalid_points_ = 0;
+  mutable std::string first_invalid_;
 };
 
 std::vector<double> NaturalFrequencies(const SystemModel& model) {
@@ -261,9 +300,10 @@ SceneChart ComputeSceneStabilityChart(const SceneChartSettings& settings) {
   options.cancel = CancelFlag();
   options.first_mode_index = 0;  // mode numbers as `geardyn modes` prints them
   options.natural_frequencies_hz.clear();
-  if (context.speed_axis() == 1) {  // a model per y row: its own frequencies
-    for (const Built& row : context.rows()) {
-      options.natural_frequencies_hz.push_back(NaturalFrequencies(*row.model));
+  if (context.speed_axis() == 1) {             // a model per y row: its own frequencies
+    for (const Built& row : context.rows()) {  // an invalid row: no labels
+      options.natural_frequencies_hz.push_back(row.model ? NaturalFrequencies(*row.model)
+                                                         : std::vector<double>{});
     }
   } else {
     options.natural_frequencies_hz.push_back(out.natural_frequencies_hz);
@@ -288,6 +328,11 @@ SceneChart ComputeSceneStabilityChart(const SceneChartSettings& settings) {
       },
       options);
   for (const std::string& w : out.chart.summary.warnings) out.warnings.push_back(w);
+  if (context.invalid_points() > 0) {
+    out.warnings.push_back(
+        std::to_string(context.invalid_points()) +
+        " grid points have an invalid scene (undetermined), the first: " + context.first_invalid());
+  }
   out.model_builds = context.builds();
   out.refined_points = context.refined();
   out.prepared_rows = context.prepared_rows();

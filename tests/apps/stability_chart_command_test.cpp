@@ -167,6 +167,24 @@ TEST(StabilityChartCommand, SmallChartWritesOneCsvRowPerPoint) {
   EXPECT_EQ(j["model_builds"].get<long>(), ny + 2);
 }
 
+// An interior grid value the scene refuses (a pinion with 25.5 teeth between 25 and 26) is an
+// undetermined point with the reason in a warning: the points around it are kept (issue 16,
+// "a failing point does not discard the points before it").
+TEST(StabilityChartCommand, InvalidInteriorPointIsUndeterminedAndTheOthersAreKept) {
+  const std::filesystem::path dir =
+      std::filesystem::path(GEARDYN_BINARY_DIR) / "test_output" / "stability_chart_invalid_point";
+  std::filesystem::remove_all(dir);
+  const CliRun run = RunGeardyn(
+      {"stability-chart", kPair, "--x", "operating_point.speed_rpm=3000:9000:2", "--y",
+       "gear.pinion.teeth=25:26:3", "--tolerance", "1e-6", "--no-curves", "--out", dir.string()});
+  ASSERT_EQ(run.code, app::kExitNumericalIssue) << run.err;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "stability_chart.json"));
+  EXPECT_EQ(j["num_points"].get<int>(), 6);
+  EXPECT_EQ(j["num_undetermined_points"].get<int>(), 2);  // the row of 25.5 teeth
+  EXPECT_NE(j.dump().find("2 grid points have an invalid scene"), std::string::npos) << j.dump(1);
+  EXPECT_NE(j.dump().find("teeth"), std::string::npos);
+}
+
 TEST(StabilityChartCommand, HelicalPairPrincipalRegionOfTheMeshModeSitsOnItsResonance) {
   // K(θ) = 4e8 + a cos θ N/m (user Fourier parameters), a = 0 … 1.6e8 N/m; speed around the
   // principal resonance f_m = 2 f_p of the mode with the most mesh strain energy (issue 5 "Must
