@@ -620,17 +620,24 @@ std::vector<BadInput> AllRows() {
   return rows;
 }
 
-// The lines of `scene` that the base does not have (the row's edit, for the table).
+// The row's edit, for the table: the lines of `scene` that the base does not have, and
+// "removed: LINE" for the base's lines that `scene` lacks.
 std::string SceneEdit(const std::string& scene) {
-  std::set<std::string> base_lines;
-  std::istringstream base(kBase);
-  for (std::string line; std::getline(base, line);) base_lines.insert(line);
-  std::istringstream in(scene);
+  const auto lines = [](const std::string& text) {
+    std::set<std::string> out;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) out.insert(line);
+    return out;
+  };
+  const std::set<std::string> base = lines(kBase), edited = lines(scene);
   std::string edit;
-  for (std::string line; std::getline(in, line);) {
-    if (!base_lines.count(line)) edit += (edit.empty() ? "" : "; ") + line;
+  for (const std::string& line : edited) {
+    if (!base.count(line)) edit += (edit.empty() ? "" : "; ") + line;
   }
-  return edit.empty() ? "(a line removed)" : edit;
+  for (const std::string& line : base) {
+    if (!edited.count(line)) edit += (edit.empty() ? "removed: " : "; removed: ") + line;
+  }
+  return edit;
 }
 
 std::filesystem::path OutputDir() {
@@ -693,7 +700,7 @@ TEST(BadInputCatalogueTest, HasUniqueRowsWithFieldAndReason) {
     for (const BadInput& r : rows) {
       std::string cmd = "geardyn";
       for (const std::string& a : r.args) cmd += " " + a;
-      if (r.scene_error) cmd += "` with `" + SceneEdit(r.scene);
+      if (r.scene_error) cmd += "` with `" + SceneEdit(r.scene).substr(0, 160);
       std::string expected;
       for (const std::string& e : r.expected) expected += (expected.empty() ? "" : " … ") + e;
       md << "| " << r.name << " | " << r.category << " | `" << cmd << "` | " << expected
