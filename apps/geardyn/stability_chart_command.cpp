@@ -5,6 +5,7 @@
 // --out, and progress lines to the error stream (unless --json or --quiet).
 #include <algorithm>
 #include <iomanip>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -263,7 +264,7 @@ Command AddStabilityChartCommand(CLI::App& app) {
                   "y axis PATH=LO:HI:N, e.g. mesh.pinion-wheel.parameters.stiffness.1=0:1e8:20")
       ->required();
   cmd->add_option("--threads", opts->threads, "threads (default 0 = all cores)")
-      ->check(FiniteNumberIn(0, 1024));  // simulate's and compare's bound
+      ->check(FiniteNumberIn(0, std::numeric_limits<int>::max()));  // clamped to the work, warned
   std::vector<std::string> methods;
   for (FloquetMethod m : kFloquetMethods) methods.push_back(ToString(m));
   cmd->add_option("--method", opts->method,

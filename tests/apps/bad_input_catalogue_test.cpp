@@ -141,8 +141,12 @@ std::vector<BadInput> SceneRows() {
                        Replace(b, "normal_module = 0.002", "normal_module = 2"), "info",
                        {"gear.pinion.normal_module", "at most 0.1", "metres"}));
   c.push_back(SceneRow("GearModuleTiny", "gear",
-                       Replace(b, "normal_module = 0.002", "normal_module = 1e-9"), "modes",
-                       {"mesh.pinion-wheel", "normal_module differs", "1e-09"}));
+                       Replace(Replace(b, "normal_module = 0.002", "normal_module = 1e-9"),
+                               "normal_module = 0.002", "normal_module = 1e-9"),
+                       "modes", {"normal_module", "at least 1e-05 m", "1e-09"}));
+  c.push_back(SceneRow("GearModulesDiffer", "gear",
+                       Replace(b, "normal_module = 0.002", "normal_module = 0.0025"), "hb",
+                       {"mesh.pinion-wheel", "normal_module differs", "0.0025"}));
   c.push_back(SceneRow("GearModuleString", "gear",
                        Replace(b, "normal_module = 0.002", "normal_module = \"2mm\""), "hb",
                        {"gear.pinion.normal_module", "must be a number", "2mm"}));
@@ -586,7 +590,7 @@ std::vector<BadInput> FlagRows() {
   c.push_back(FlagRow(
       "ChartThreadsNegative", "stability-chart",
       chart({"--x", "operating_point.speed_rpm=1000:3000:2", y[0], y[1], "--threads", "-2"}),
-      {"--threads", "[0, 1024]", "-2"}));
+      {"--threads", "must be a finite number in [0, ", "-2"}));
   c.push_back(FlagRow(
       "ChartToleranceNan", "stability-chart",
       chart({"--x", "operating_point.speed_rpm=1000:3000:2", y[0], y[1], "--tolerance", "nan"}),
