@@ -19,6 +19,13 @@ struct SceneCommandOptions {
   bool json = false;
 };
 
+/// @brief CLI11 check of a finite number in [lo, hi] (an open end with lo_open / hi_open).
+///
+/// Used instead of CLI::PositiveNumber / CLI::NonNegativeNumber, which let NaN through and print
+/// their range up to DBL_MAX ("Value 0 not in range 0.000000 to 1797…"). CLI11 prefixes the
+/// message with the option's name: "--tolerance: must be a finite number in (0, 1), got nan".
+CLI::Validator FiniteNumberIn(double lo, double hi, bool lo_open = false, bool hi_open = false);
+
 /// Adds the SceneCommandOptions to `cmd`.
 void AddSceneOptions(CLI::App* cmd, SceneCommandOptions* opts);
 

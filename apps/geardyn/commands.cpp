@@ -1,7 +1,29 @@
+#include <cmath>
+#include <cstdlib>
+#include <iomanip>
+#include <sstream>
+
 #include "geardyn/command.hpp"
 #include "geardyn/output_files.hpp"
 
 namespace geardyn::app {
+
+CLI::Validator FiniteNumberIn(double lo, double hi, bool lo_open, bool hi_open) {
+  std::ostringstream range;
+  range << std::setprecision(12) << (lo_open ? "(" : "[") << lo << ", " << hi
+        << (hi_open ? ")" : "]");
+  const std::string bounds = range.str();
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        const bool number = !text.empty() && end == text.c_str() + text.size();
+        const bool inside = number && std::isfinite(v) && (lo_open ? v > lo : v >= lo) &&
+                            (hi_open ? v < hi : v <= hi);
+        return inside ? std::string() : "must be a finite number in " + bounds + ", got " + text;
+      },
+      "NUMBER in " + bounds);
+}
 
 void AddSceneOptions(CLI::App* cmd, SceneCommandOptions* opts) {
   cmd->add_option("scene", opts->scene,

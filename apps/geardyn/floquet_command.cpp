@@ -10,6 +10,7 @@
 #include "geardyn/analyses/floquet.hpp"
 #include "geardyn/cli.hpp"
 #include "geardyn/command.hpp"
+#include "geardyn/common/check.hpp"
 #include "geardyn/common/errors.hpp"
 #include "geardyn/models/scene/scene_reader.hpp"
 #include "geardyn/models/system/scene_system.hpp"
@@ -132,6 +133,8 @@ int RunFloquet(const FloquetCommandOptions& opts, std::ostream& out) {
   options.method = ParseFloquetMethod(opts.method, "--method");
   options.tolerance = opts.tolerance;
   options.arpack_nev = opts.nev;
+  // --nev is checked here, naming the flag: FloquetOptions names its own field (arpack_nev).
+  GEARDYN_THROW_UNLESS(opts.nev >= 1, "--nev: must be >= 1, got " << opts.nev);
   const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
   if (scene.meshes.empty() && !scene.oscillator) {
     throw InvalidInput(scene.source + ": the scene has no mesh");
@@ -148,6 +151,10 @@ int RunFloquet(const FloquetCommandOptions& opts, std::ostream& out) {
     throw InvalidInput(scene.source +
                        ": the mesh frequency is 0 (operating_point.speed_rpm must be > 0)");
   }
+  GEARDYN_THROW_UNLESS(
+      options.method != FloquetMethod::kArpackMonodromy || opts.nev <= 2 * built.model.num_dofs(),
+      "--nev: must be <= 2n = " << 2 * built.model.num_dofs() << " (the multipliers of the "
+                                << built.model.num_dofs() << "-DOF system), got " << opts.nev);
   const FloquetResult result = ComputeFloquet(built.model, options);
   const nlohmann::json report = MakeFloquetReport(scene, opts.method, options.mesh_frequency_hz,
                                                   built.model.num_dofs(), result, built.warnings);
@@ -184,7 +191,7 @@ Command AddFloquetCommand(CLI::App& app) {
       ->check(CLI::IsMember(names));
   cmd->add_option("--tolerance", opts->tolerance,
                   "error target on the multipliers (default 1e-10; not used by exact_steps)")
-      ->check(CLI::PositiveNumber);
+      ->check(FiniteNumberIn(0.0, 1.0, true, true));  // FloquetOptions::tolerance's bound
   cmd->add_option("--nev", opts->nev,
                   "arpack_monodromy: number of largest-|λ| multipliers (default 6, <= 2n)");
   return {cmd, [opts](std::ostream& out) { return RunFloquet(*opts, out); }};

@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <numbers>
 
@@ -55,6 +56,7 @@ struct HbCommandOptions {
   int monodromy_steps = 0;              // --monodromy-steps (0: automatic)
   int branch_search = SystemNhbOptions{}.continuation.branch_search;  // --branch-search (0: off)
   CLI::Option* tolerance_option = nullptr;
+  CLI::Option* harmonics_option = nullptr;
 };
 
 // The scene's first mesh frequency [Hz], 0 when it has no meshes or no speed; an oscillator
@@ -232,6 +234,11 @@ int RunLinearHb(const HbCommandOptions& opts, const Scene& scene, const SceneSys
 }
 
 int RunHb(const HbCommandOptions& opts, std::ostream& out, std::ostream& err) {
+  // HbSettings::harmonics = 0 means "choose H" (from --tolerance, or the nonlinear default):
+  // given on the command line, 0 used to fall silently to that default (issue 16).
+  GEARDYN_THROW_UNLESS(opts.harmonics_option->count() == 0 || opts.settings.harmonics >= 1,
+                       "--harmonics: must be >= 1 (omit it to choose H from --tolerance), got "
+                           << opts.settings.harmonics);
   GEARDYN_THROW_UNLESS(!(opts.nonlinear && opts.settings.linear),
                        "--nonlinear and --linear: give at most one of them");
   const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
@@ -274,11 +281,12 @@ Command AddHbCommand(CLI::App& app) {
                   "times the scene's, n = 200). Linear: n evenly spaced points. Nonlinear: the "
                   "continuation range; n is its resolution (each step advances at most 1/n of "
                   "the range: at least about n points, more near resonances and folds)");
-  cmd->add_option("--harmonics", opts->settings.harmonics,
-                  "number of harmonics H of the mesh frequency (linear: each with the "
-                  "sidebands of the tooth errors, at most 2048; default: from --tolerance; "
-                  "nonlinear default: 24; nonlinear with tooth errors repeating every P mesh "
-                  "cycles: harmonics of f_mesh/P, at least P)");
+  opts->harmonics_option =
+      cmd->add_option("--harmonics", opts->settings.harmonics,
+                      "number of harmonics H of the mesh frequency (linear: each with the "
+                      "sidebands of the tooth errors, at most 2048; default: from --tolerance; "
+                      "nonlinear default: 24; nonlinear with tooth errors repeating every P mesh "
+                      "cycles: harmonics of f_mesh/P, at least P)");
   opts->tolerance_option = cmd->add_option(
       "--tolerance", opts->settings.tolerance,
       "linear, without --harmonics: relative change of the RMS DTE from H/2 to H accepted "
@@ -304,7 +312,7 @@ Command AddHbCommand(CLI::App& app) {
                   "stiffness), whose monodromy is the exact product over the contact switches "
                   "and stiffness steps; elsewhere |mu| near 1 is first-order in the step: raise "
                   "it (e.g. 256) when the stable/unstable flag flickers")
-      ->check(CLI::NonNegativeNumber);
+      ->check(FiniteNumberIn(0, std::numeric_limits<int>::max()));
   cmd->add_option("--branch-search", opts->branch_search,
                   "nonlinear: frequencies inside the range (default 8, 0: off, at most 1000) "
                   "where Newton starts from four scaled contact guesses; a solution off the "

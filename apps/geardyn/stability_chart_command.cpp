@@ -5,6 +5,7 @@
 // --out, and progress lines to the error stream (unless --json or --quiet).
 #include <algorithm>
 #include <iomanip>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -263,7 +264,7 @@ Command AddStabilityChartCommand(CLI::App& app) {
                   "y axis PATH=LO:HI:N, e.g. mesh.pinion-wheel.parameters.stiffness.1=0:1e8:20")
       ->required();
   cmd->add_option("--threads", opts->threads, "threads (default 0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(FiniteNumberIn(0, std::numeric_limits<int>::max()));  // clamped to the work, warned
   std::vector<std::string> methods;
   for (FloquetMethod m : kFloquetMethods) methods.push_back(ToString(m));
   cmd->add_option("--method", opts->method,
@@ -273,7 +274,7 @@ Command AddStabilityChartCommand(CLI::App& app) {
   cmd->add_option("--tolerance", opts->tolerance,
                   "Floquet error target of every point (default 1e-6; points whose verdict lies "
                   "within twice the estimate are recomputed at 1e-10)")
-      ->check(CLI::PositiveNumber);
+      ->check(FiniteNumberIn(0.0, 1.0, true, true));  // FloquetOptions::tolerance's bound
   cmd->add_option("--boundary-tolerance", opts->boundary_tolerance,
                   "transition-curve bisection tolerance, a fraction of the axis span (default "
                   "1e-3: below a pixel of the SVG's 780-px frame)")

@@ -214,7 +214,7 @@ ConstantCoefficient::ConstantCoefficient(VectorX values, std::int64_t period_mes
     : values_(std::move(values)), period_meshes_(period_meshes) {
   CheckPeriodMeshes(period_meshes_);
   GEARDYN_THROW_UNLESS(values_.size() >= 1, "values: needs at least one channel, got 0");
-  CheckFinite(values_, "values");
+  CheckFinite(values_, "ConstantCoefficient values");
 }
 
 PiecewiseConstantCoefficient::PiecewiseConstantCoefficient(VectorX breakpoints, MatrixX values,
@@ -242,7 +242,7 @@ PiecewiseConstantCoefficient::PiecewiseConstantCoefficient(VectorX breakpoints, 
                                << "] = " << breakpoints_[k - 1]);
     }
   }
-  CheckFinite(values_, "values");
+  CheckFinite(values_, "PiecewiseConstantCoefficient values");
 }
 
 double PiecewiseConstantCoefficient::interval_end(int k) const {
@@ -265,8 +265,8 @@ FourierCoefficient::FourierCoefficient(VectorX mean, MatrixXc harmonics, std::in
   GEARDYN_THROW_UNLESS(harmonics_.rows() == mean_.size(),
                        "harmonics: has " << harmonics_.rows() << " rows but mean has "
                                          << mean_.size() << " channels");
-  CheckFinite(mean_, "mean");
-  CheckFinite(harmonics_, "harmonics");
+  CheckFinite(mean_, "FourierCoefficient mean");
+  CheckFinite(harmonics_, "FourierCoefficient harmonics");
 }
 
 FourierCoefficient FourierCoefficient::FromCosSin(const VectorX& mean,
@@ -291,7 +291,7 @@ TableCoefficient::TableCoefficient(MatrixX samples, std::int64_t period_meshes)
   CheckPeriodMeshes(period_meshes_);
   GEARDYN_THROW_UNLESS(samples_.rows() >= 1, "samples: needs at least one channel (row), got 0");
   GEARDYN_THROW_UNLESS(samples_.cols() >= 1, "samples: needs at least one sample (column), got 0");
-  CheckFinite(samples_, "samples");
+  CheckFinite(samples_, "TableCoefficient samples");
 }
 
 double TableCoefficient::sample_theta(int s) const {

@@ -159,9 +159,11 @@ MeshIndex SystemBuilder::AddMesh(const std::string& name, BodyIndex body_i, Body
         std::isfinite(*equivalent_mass) && *equivalent_mass > 0.0,
         what << " equivalent_mass: must be finite and > 0, got " << *equivalent_mass << " kg");
   }
-  GEARDYN_THROW_UNLESS(
-      std::isfinite(phase_ratio) && std::isfinite(phase_offset),
-      what << ": non-finite phase_ratio " << phase_ratio << " or phase_offset " << phase_offset);
+  // One check per argument, so that the message names the one that is wrong (issue 16).
+  GEARDYN_THROW_UNLESS(std::isfinite(phase_ratio),
+                       what << " phase_ratio: must be finite, got " << phase_ratio);
+  GEARDYN_THROW_UNLESS(std::isfinite(phase_offset),
+                       what << " phase_offset: must be finite, got " << phase_offset << " rad");
   meshes_.push_back(
       {name, body_i, body_j, G, std::move(core), equivalent_mass, phase_ratio, phase_offset});
   return MeshIndex(static_cast<int>(meshes_.size()) - 1);

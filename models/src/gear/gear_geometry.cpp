@@ -302,6 +302,21 @@ GearPairGeometry CalcGearPairGeometry(const GearPairSpec& spec) {
   const double ra2 = tip_radius(spec.gear, r2);
   const double rf1 = root_radius(spec.pinion, r1);
   const double rf2 = root_radius(spec.gear, r2);
+  // A given tip diameter beyond the one where the flanks meet (a pointed tooth) is no gear — most
+  // often millimetres in the metre field. Checked here, before the path of contact, so that the
+  // error names tip_diameter instead of the tip interference it causes further on (issue 16).
+  auto check_given_tip = [&](const GearBlank& b, const std::string& name, double r, double rb,
+                             double ra, double s_t) {
+    if (!b.tip_diameter || ra <= rb) return;  // ra ≤ rb: the tip_radius check below names it
+    const double s_at = ThicknessAt(b.kind, r, s_t, inv_alpha_t, ra, Involute(std::acos(rb / ra)));
+    GEARDYN_THROW_UNLESS(s_at > 0.0, name << ".tip_diameter: " << Mm{2.0 * ra}
+                                          << " is beyond the diameter where the tooth comes to a "
+                                             "point (tip thickness "
+                                          << Mm{s_at}
+                                          << "); lengths are in metres: 44 mm is 0.044");
+  };
+  check_given_tip(spec.pinion, "pinion", r1, rb1, ra1, s_t1);
+  check_given_tip(spec.gear, "gear", r2, rb2, ra2, s_t2);
 
   GEARDYN_THROW_UNLESS(rf1 > 0.0, "pinion.root_radius: " << Mm{rf1} << " is not positive (short by "
                                                          << Mm{-rf1} << ")");
