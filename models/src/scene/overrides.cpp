@@ -177,9 +177,9 @@ void ApplyOverride(ErrorContext& ctx, toml::table& root, std::size_t index,
     try {
       parsed = toml::parse("v = " + QuoteToml(value), marker);
     } catch (const toml::parse_error& e) {
-      ctx.FailOverride(text, path,
-                       "the value is neither a TOML value nor a valid string: " +
-                           std::string(e.description()));
+      ctx.FailOverride(
+          text, path,
+          "the value is neither a TOML value nor a valid string: " + std::string(e.description()));
     }
   }
   toml::node& new_value = *parsed.get("v");
