@@ -92,7 +92,7 @@ double EvalSeries(const std::vector<double>& v, double theta) {
 }
 
 // Finite values that are each in range can still overflow in the channels K·h and K·μ·b² (e.g.
-// K = 3e8 N/m with μ = 1e300): found by fuzzing (tests/fuzz/regressions/mesh_tables/). The
+// K = 3e8 N/m with μ = 1e300): found with the fuzz entry (tests/fuzz/regressions/mesh_tables/). The
 // coefficient constructors would then reject an inf with a message naming neither the file nor
 // the key, so the reader reports it at the key first.
 void RequireFiniteChannels(const Fields& f, bool finite, bool has_mu) {

@@ -173,7 +173,7 @@ void ApplyOverride(ErrorContext& ctx, toml::table& root, std::size_t index,
   }
   if (!ok) {
     // Even quoted, a value that is not valid UTF-8 is no TOML string: toml++'s parse_error
-    // escaped the reader here (found by fuzzing, tests/fuzz/regressions/scene_reader/).
+    // escaped the reader here (found with the fuzz entry, tests/fuzz/regressions/scene_reader/).
     try {
       parsed = toml::parse("v = " + QuoteToml(value), marker);
     } catch (const toml::parse_error& e) {
