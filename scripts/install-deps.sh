@@ -1,9 +1,16 @@
 #!/usr/bin/env bash
 # Installs the Debian packages geardyn needs, only those that are missing.
+# --fuzz also installs clang and its libFuzzer/sanitizer runtimes (scripts/run-fuzzers.sh).
 set -euo pipefail
 packages=(build-essential cmake ninja-build pkg-config libeigen3-dev libarpack2-dev liblapack-dev libfftw3-dev libgsl-dev
           libgtest-dev libgmock-dev libbenchmark-dev libtomlplusplus-dev libcli11-dev
           nlohmann-json3-dev)
+for arg in "$@"; do
+  case "$arg" in
+    --fuzz) packages+=(clang libclang-rt-14-dev) ;;
+    *) echo "install-deps.sh: unknown argument '$arg' (known: --fuzz)" >&2; exit 2 ;;
+  esac
+done
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -120,7 +120,11 @@ SliceToothContact ContactMeshKinematics::EvalToothPair(const Vector12& q, double
   // State columns: [q_pair (12), θ, pinion tooth (ψ, τ_r, τ_t), gear tooth (ψ, τ_r, τ_t)].
   using Row = Eigen::Matrix<double, 1, kStateSize>;
   using Slice = Eigen::Matrix<double, 3, kStateSize>;  // ∂(c_k, φ_k)/∂state of a slice pose
-  auto [p1, p2] = SlicePoses(q, theta, slice);
+  // Named references, not a structured binding: the lambdas below capture them, which clang
+  // before 16 rejects for structured bindings (the fuzz build, docs/fuzzing.md, uses clang 14).
+  const std::pair<GearSlicePose, GearSlicePose> poses = SlicePoses(q, theta, slice);
+  const GearSlicePose& p1 = poses.first;
+  const GearSlicePose& p2 = poses.second;
   const int eps = Unwind(side);
   const double y = slice_position(slice);
   const double zs = frame_.reference_point.z() + y;

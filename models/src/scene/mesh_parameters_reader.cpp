@@ -91,6 +91,17 @@ double EvalSeries(const std::vector<double>& v, double theta) {
   return f;
 }
 
+// Finite values that are each in range can still overflow in the channels K·h and K·μ·b² (e.g.
+// K = 3e8 N/m with μ = 1e300): found with the fuzz entry (tests/fuzz/regressions/mesh_tables/). The
+// coefficient constructors would then reject an inf with a message naming neither the file nor
+// the key, so the reader reports it at the key first.
+void RequireFiniteChannels(const Fields& f, bool finite, bool has_mu) {
+  if (finite) return;
+  f.Fail(has_mu ? "mu" : "stiffness",
+         std::string("the channels K*h and K*mu*b^2 overflow (not finite): K [N/m]") +
+             (has_mu ? ", mu [-]" : "") + " and load_centre [m] must be of physical size");
+}
+
 double SumAbs(const std::vector<double>& v) {
   double s = 0.0;
   for (const double x : v) s += std::abs(x);
@@ -171,6 +182,7 @@ UserMeshParameters ReadUserMeshParameters(const Fields& f, double b, double max_
                              "where K > 0)");
       }
     }
+    RequireFiniteChannels(f, channels.allFinite(), mu.has_value());
     p.stiffness = TableCoefficient(std::move(channels));
     if (eta || zeta) {
       MatrixX te(2, static_cast<Eigen::Index>(n));
@@ -219,6 +231,12 @@ UserMeshParameters ReadUserMeshParameters(const Fields& f, double b, double max_
   // K·μ·b², with the default μ = κ² + 1/3: K·h·h + K·b²/3.
   const std::vector<Complex> Kmub2 = mu ? AddScaled({}, Multiply(K, TwoSided(mu_v)), b2)
                                         : AddScaled(Multiply(Kh, TwoSided(h_v)), K, b2 / 3.0);
+  const auto finite = [](const std::vector<Complex>& c) {
+    return std::all_of(c.begin(), c.end(), [](const Complex& z) {
+      return std::isfinite(z.real()) && std::isfinite(z.imag());
+    });
+  };
+  RequireFiniteChannels(f, finite(K) && finite(Kh) && finite(Kmub2), mu.has_value());
   p.stiffness = ToCoefficient({K, Kh, Kmub2});
   if (eta || zeta) {
     p.transmission_error =

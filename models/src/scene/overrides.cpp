@@ -171,7 +171,17 @@ void ApplyOverride(ErrorContext& ctx, toml::table& root, std::size_t index,
   } catch (const toml::parse_error&) {
     ok = false;
   }
-  if (!ok) parsed = toml::parse("v = " + QuoteToml(value), marker);
+  if (!ok) {
+    // Even quoted, a value that is not valid UTF-8 is no TOML string: toml++'s parse_error
+    // escaped the reader here (found with the fuzz entry, tests/fuzz/regressions/scene_reader/).
+    try {
+      parsed = toml::parse("v = " + QuoteToml(value), marker);
+    } catch (const toml::parse_error& e) {
+      ctx.FailOverride(
+          text, path,
+          "the value is neither a TOML value nor a valid string: " + std::string(e.description()));
+    }
+  }
   toml::node& new_value = *parsed.get("v");
 
   toml::node* current = &root;
