@@ -496,6 +496,13 @@ class FloquetStress : public ::testing::TestWithParam<FloquetCase> {};
 TEST_P(FloquetStress, RightMultipliersOrHonestStatus) {
   const FloquetCase& c = GetParam();
   const FloquetResult r = c.run();
+  // The outcome, for the report (--gtest_output=json lists these properties per case).
+  RecordProperty("outcome_status", StatusName(r.summary.status));
+  RecordProperty("verdict", ToString(r.verdict));
+  RecordProperty("message", r.summary.message);
+  RecordProperty("method", ToString(r.method_used));
+  RecordProperty("max_abs", ::testing::PrintToString(r.max_abs_multiplier));
+  RecordProperty("error_estimate", ::testing::PrintToString(r.summary.error_estimate));
   ExpectHonestVerdict(r);
   ExpectFiniteIfOk(r);
   c.check(r);
