@@ -12,8 +12,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
-#include <chrono>
 #include <cmath>
+#include <ctime>
 #include <functional>
 #include <ostream>
 #include <string>
@@ -538,7 +538,9 @@ TEST(ModesStressLarge, ArpackOnAHundredThousandDofChain) {
   Vector6 m, k;
   m << 1.0, 1.0, 1.0, 0.01, 0.01, 0.02;
   k << 1e6, 1.7e6, 2.9e6, 1.3e4, 2.3e4, 3.1e4;
-  const auto t0 = std::chrono::steady_clock::now();
+  // CPU time, not wall time: the bound is about the algorithm's cost (O(n) per Lanczos step), and
+  // wall time on a shared CI machine measures the neighbours (60 s wall for 3 s CPU at load 9).
+  const std::clock_t t0 = std::clock();
   const SystemModel model = MakeSixWayChain(N, m, k);
   ASSERT_EQ(model.num_dofs(), 6 * N);
   ModalOptions o;
@@ -546,8 +548,7 @@ TEST(ModesStressLarge, ArpackOnAHundredThousandDofChain) {
   o.num_modes = 8;
   o.compute_shapes = true;
   const ModalResult r = ComputeModes(model, o);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double seconds = static_cast<double>(std::clock() - t0) / CLOCKS_PER_SEC;
   ExpectAllFinite(r);
   ASSERT_TRUE(r.summary.ok()) << r.summary.BriefReport();
   EXPECT_EQ(r.method_used, ModalMethod::kArpack);
@@ -560,7 +561,7 @@ TEST(ModesStressLarge, ArpackOnAHundredThousandDofChain) {
                 .cwiseAbs()
                 .maxCoeff(),
             kOrthoTol);
-  EXPECT_LT(seconds, 20.0) << "the 1e5-DOF eigen path took " << seconds << " s";
+  EXPECT_LT(seconds, 20.0) << "the 1e5-DOF eigen path took " << seconds << " s of CPU";
 }
 
 }  // namespace
