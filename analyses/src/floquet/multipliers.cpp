@@ -76,7 +76,13 @@ Spectrum SpectrumOf(const ScaledMatrix& phi, double period_s, double num_factors
     const double log_mod =
         std::log(std::max(mod, std::numeric_limits<double>::min())) + phi.log_scale;
     out.exponents[i] = std::complex<double>(log_mod / period_s, arg / period_s);
-    out.multipliers[i] = std::polar(std::exp(log_mod), arg);
+    // A real eigenvalue stays real: std::polar(inf, 0) is (inf, inf·0 = NaN), which turned an
+    // overflowing growth (finite exponent, documented as |λ| = inf) into a NaN multiplier
+    // (stress suite, issue 16).
+    out.multipliers[i] =
+        values[i].imag() == 0.0
+            ? std::complex<double>(std::copysign(std::exp(log_mod), values[i].real()), 0.0)
+            : std::polar(std::exp(log_mod), arg);
   }
   out.roundoff = roundoff * scale;
   SortSpectrum(&out.multipliers, &out.exponents);

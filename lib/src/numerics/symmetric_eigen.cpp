@@ -85,7 +85,7 @@ GeneralizedEigenResult SolveGeneralizedEigenDense(const MatrixX& K, const Matrix
     }
     internal::FinalizeEigenpairs(eigen.eigenvalues(), std::move(vectors), MatrixX(), K.diagonal(),
                                  rigid_count, options.zero_tol, "the dense symmetric eigensolver",
-                                 &result);
+                                 &result, [&K](const VectorX& phi) { return phi.dot(K * phi); });
   }
   summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -322,7 +322,8 @@ GeneralizedEigenResult SolveGeneralizedEigenArpack(const SparseMatrix& K, const 
     const MatrixX M_vectors = M * run.vectors;
     internal::FinalizeEigenpairs(std::move(run.values), std::move(run.vectors), M_vectors,
                                  VectorX(K.diagonal()), /*rigid_count=*/-1, options.zero_tol,
-                                 "ARPACK shift-invert Lanczos", &result);
+                                 "ARPACK shift-invert Lanczos", &result,
+                                 [&K](const VectorX& phi) { return phi.dot(K * phi); });
     if (!options.compute_vectors) result.vectors.resize(0, 0);
     CheckNoEigenvalueMissed(K, M, options.tol, &result);
     // An indefinite K − σM at σ < 0 means the pencil has an eigenvalue below σ: K is not PSD,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <sstream>
 #include <vector>
@@ -97,7 +98,8 @@ double SpectrumScale(const VectorX& K_diagonal, const VectorX& M_diagonal) {
 
 void FinalizeEigenpairs(VectorX values, MatrixX vectors, const MatrixX& M_vectors,
                         const VectorX& K_diagonal, int rigid_count, double zero_tol,
-                        const std::string& step, GeneralizedEigenResult* result) {
+                        const std::string& step, GeneralizedEigenResult* result,
+                        const std::function<double(const VectorX&)>& quadratic_form) {
   Summary& summary = result->summary;
   if (!values.allFinite() || !vectors.allFinite()) {
     summary.status = Status::kNumericalIssue;
@@ -151,18 +153,33 @@ void FinalizeEigenpairs(VectorX values, MatrixX vectors, const MatrixX& M_vector
   result->eigenvalues.resize(m);
   result->num_rigid_body_modes = 0;
   double most_negative = 0.0, negative_bound = 0.0;
+  // Round-off of the eigensolver's λ (absolute, ~ n·ε·λ_max): below it, λ says nothing about
+  // φᵀKφ, so the criterion is applied to the Rayleigh quotient (header).
+  const double lambda_roundoff =
+      100.0 * static_cast<double>(std::max<Eigen::Index>(sorted.rows(), 1)) *
+      std::numeric_limits<double>::epsilon() *
+      std::max(result->spectrum_scale, m > 0 ? values.cwiseAbs().maxCoeff() : 0.0);
   for (Eigen::Index k = 0; k < m; ++k) {
     double lambda = values(order[static_cast<std::size_t>(k)]);
-    const bool is_rigid = have_vectors
-                              ? IsRigidBodyPattern(lambda, scaling, sorted.col(k), zero_tol)
-                              : rigid[static_cast<std::size_t>(k)] != 0;
+    bool is_rigid = have_vectors ? IsRigidBodyPattern(lambda, scaling, sorted.col(k), zero_tol)
+                                 : rigid[static_cast<std::size_t>(k)] != 0;
+    // A λ within round-off of zero is judged by φᵀKφ: rigid if that passes the criterion, and
+    // not evidence of an indefinite K unless φᵀKφ is negative beyond the bound too.
+    bool negative_is_roundoff = false;
+    if (have_vectors && !is_rigid && quadratic_form && std::abs(lambda) <= lambda_roundoff) {
+      const VectorX phi = sorted.col(k);
+      const double q = quadratic_form(phi);
+      if (std::isfinite(q) && IsRigidBodyPattern(q, scaling, phi, zero_tol)) is_rigid = true;
+      negative_is_roundoff =
+          std::isfinite(q) && q >= -zero_tol * phi.dot(scaling.cwiseProduct(phi));
+    }
     const double bound = have_vectors
                              ? zero_tol * sorted.col(k).dot(scaling.cwiseProduct(sorted.col(k)))
                              : zero_tol * result->spectrum_scale;
     if (is_rigid) {
       lambda = 0.0;
       ++result->num_rigid_body_modes;
-    } else if (lambda < -bound && lambda < most_negative) {
+    } else if (lambda < -bound && lambda < most_negative && !negative_is_roundoff) {
       most_negative = lambda;
       negative_bound = bound;
     }

@@ -4,6 +4,7 @@
 /// generalized symmetric eigen solvers of geardyn/numerics/symmetric_eigen.hpp.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "geardyn/common/eigen_types.hpp"
@@ -38,9 +39,17 @@ double SpectrumScale(const VectorX& K_diagonal, const VectorX& M_diagonal);
 ///   count). Rigid λ are set to 0 and reported in a warning;
 /// * any other λ below −zero_tol·φᵀDφ (without vectors −zero_tol·s) → kNumericalIssue ("K is
 ///   not positive semidefinite") unless the status is already not kSuccess.
+/// * `quadratic_form` (optional, φ ↦ φᵀKφ): with vectors, a pair whose λ fails the criterion
+///   but lies within the solver's round-off of zero (|λ| ≤ 100·n·ε·max(s, max|λ|)) is tested
+///   again on its Rayleigh quotient φᵀKφ, the quantity the criterion is defined on. An
+///   eigensolver's λ carries an absolute error ~ n·ε·λ_max, while φᵀDφ of the rigid mode of a
+///   heavy body is ~ k/M_heavy: with mass ratios of 1e12 the bare λ test called a rigid mode
+///   "K not positive semidefinite" (stress suite, issue 16); the null vector itself is exact to
+///   round-off, so φᵀKφ ~ ε²λ_max is far below the bound.
 /// Expects result->spectrum_scale set; keeps an existing non-success status and message.
 void FinalizeEigenpairs(VectorX values, MatrixX vectors, const MatrixX& M_vectors,
                         const VectorX& K_diagonal, int rigid_count, double zero_tol,
-                        const std::string& step, GeneralizedEigenResult* result);
+                        const std::string& step, GeneralizedEigenResult* result,
+                        const std::function<double(const VectorX&)>& quadratic_form = {});
 
 }  // namespace geardyn::internal

@@ -122,7 +122,8 @@ GeneralizedEigenResult SolveGeneralizedEigenDenseSubset(const MatrixX& K, const 
   cholesky.matrixU().solveInPlace(vectors);
   internal::FinalizeEigenpairs(w.head(count), std::move(vectors), MatrixX(), K.diagonal(),
                                /*rigid_count=*/-1, options.zero_tol,
-                               "the dense subset eigensolver (dstemr)", &result);
+                               "the dense subset eigensolver (dstemr)", &result,
+                               [&K](const VectorX& phi) { return phi.dot(K * phi); });
   return finish();
 }
 

@@ -281,7 +281,9 @@ SystemModel SystemBuilder::Build() const {
   }
 
   // Mass: every DOF must carry mass; then positive definite.
-  const VectorX mass_diag = MatrixX(data->mass).diagonal();
+  // The diagonal of the sparse M directly: densifying it first (MatrixX(mass).diagonal()) cost
+  // O(n²) memory and threw std::bad_alloc at 10⁵ DOFs (stress suite, issue 16).
+  const VectorX mass_diag = data->mass.diagonal();
   for (int i = 0; i < n; ++i) {
     GEARDYN_THROW_UNLESS(
         mass_diag(i) > 0.0,
