@@ -168,6 +168,10 @@ int NhbSolver::Newton(VectorX& x, double omega, Status* status, double* residual
     VectorX x_prev = hx;
     double lambda_prev = 0.0;
     while (lambda < 1.0 && ds >= kHomotopyMinStep && total < 20 * s.options.max_newton_iterations) {
+      // Every predictor step counts (issue 16): a corrector that converges at its first
+      // evaluation leaves the loop before its own ++total, so a path that runs away from λ = 1
+      // (λ → −∞ seen with a back gap of 1e12) would otherwise never reach the limit.
+      ++total;
       // Predictor along the tangent, corrector on [R − (1 − λ) r0; tᵀ(y − y_pred)] = 0.
       const VectorX xpred = hx + ds * xs_scale * t.head(mm);
       const double lpred = lambda + ds * t[mm];

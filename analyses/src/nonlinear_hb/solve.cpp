@@ -2,6 +2,7 @@
 /// @brief SolveNonlinearHarmonicBalance: one Ω, given H or H doubled from 4 until the relative
 /// H→2H change of the RMS of u is below the tolerance (each solve starts from the previous
 /// solution, zero-padded).
+#include <Eigen/LU>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -23,15 +24,53 @@ NhbSolveResult SolveNonlinearHarmonicBalance(const NhbProblem& problem, double o
   const int n = problem.law->num_coordinates();
   NhbSolveResult result;
   long newton = 0;
+  long restarts = 0;
+  double jacobian_rcond = 1.0;  // of the last successful solve
   auto solve = [&](int H, VectorX* x, NhbPoint& point) {
     NhbSolver solver(problem, options, H);
-    *x = x->size() == 0 ? solver.ContactGuess(omega) : NhbSolver::Resize(*x, n, H);
+    const bool fresh = x->size() == 0;
+    *x = fresh ? solver.ContactGuess(omega) : NhbSolver::Resize(*x, n, H);
     Status status;
     double rn = 0.0;
     point.newton_iterations = solver.Newton(*x, omega, &status, &rn);
     newton += point.newton_iterations;
+    if (fresh && status != Status::kSuccess) {
+      // Issue 16: past the contact branch's fold (B&K oscillator, F_m = 0.1, F_a = 0.03, ζ =
+      // 0.05 at Ω = 0.9: the contact answer's amplitude 0.14 exceeds the mean deflection) the
+      // contact guess lies next to grazing, where damped Newton, the dogleg and the homotopy all
+      // stall (830 iterations, kNotConverged) although a contact-loss orbit exists. Restart from
+      // the contact guess with its alternating part scaled (the guesses of the branch search,
+      // branch_search.cpp): the first that converges is the answer; none → the first status.
+      const VectorX guess = solver.ContactGuess(omega);
+      for (const double scale : {3.0, 0.3, 8.0}) {
+        VectorX trial = guess;
+        trial.tail(trial.size() - n) *= scale;
+        Status trial_status;
+        double trial_rn = 0.0;
+        const int used = solver.Newton(trial, omega, &trial_status, &trial_rn);
+        newton += used;
+        point.newton_iterations += used;
+        ++restarts;
+        if (trial_status == Status::kSuccess) {
+          *x = trial;
+          status = trial_status;
+          rn = trial_rn;
+          break;
+        }
+      }
+    }
     point.status = status;
     point.residual_norm = rn;
+    if (status == Status::kSuccess) {
+      // Issue 16: a singular Jacobian at the solution means a non-unique periodic solution
+      // (ζ = 0 with a harmonic kΩ on a natural frequency of the contact-linearised system, e.g.
+      // Ω = ω_n/3: any amount of the free vibration can be added) or a fold. Newton converges to
+      // one of them without noticing; the summary warns (the linear HB reports kNumericalIssue).
+      VectorX r;
+      MatrixX J;
+      solver.Evaluate(*x, omega, &r, &J, nullptr);
+      jacobian_rcond = J.allFinite() ? Eigen::PartialPivLU<MatrixX>(J).rcond() : 0.0;
+    }
     solver.Describe(*x, omega, point);
     if (options.stability != NhbStabilityMethod::kNone && status == Status::kSuccess) {
       point.max_multiplier = solver.MaxMultiplier(*x, omega);
@@ -81,7 +120,18 @@ NhbSolveResult SolveNonlinearHarmonicBalance(const NhbProblem& problem, double o
       << " of D_k or P D_k^-1 P^T): an undamped linear resonance? Expect lost digits";
     result.summary.warnings.push_back(w.str());
   }
+  if (result.point.status == Status::kSuccess && !(jacobian_rcond >= kNhbIllConditioned)) {
+    std::ostringstream w;
+    w << std::setprecision(3)
+      << "nonlinear HB: singular Jacobian at the solution at Omega = " << result.point.omega
+      << " (estimated 1/cond " << jacobian_rcond
+      << "): the periodic solution is not unique (zero damping with a harmonic k*Omega on a "
+         "natural frequency, or a fold); this is one of them — add damping or check nearby "
+         "frequencies";
+    result.summary.warnings.push_back(w.str());
+  }
   result.summary.counters["newton_iterations"] = newton;
+  if (restarts > 0) result.summary.counters["newton_restarts"] = restarts;
   result.summary.counters["harmonics"] = result.harmonics_used;
   result.summary.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

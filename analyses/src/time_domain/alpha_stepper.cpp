@@ -96,8 +96,11 @@ class AlphaStepper final : public TdStepper {
     if (!ws_.force.allFinite()) return kInf;
     trial_power_ = ws_.mesh_phase_power;
     trial_dissipation_ = DissipationPower(sys_, ws_, trial_v_);
-    const double w_tau = 1.0 / (6.0 * tau * (1.0 - tau));
-    const double w_1 = 0.5 - w_tau * tau;
+    // ρ∞ = 0 gives α_f = 0, τ = 1: the α-point is the step end and the three-node rule
+    // degenerates (w_τ = 1/0, a NaN energy balance; issue 16) — the trapezoidal rule then.
+    const bool degenerate = 1.0 - tau < 1e-6;
+    const double w_tau = degenerate ? 0.0 : 1.0 / (6.0 * tau * (1.0 - tau));
+    const double w_1 = degenerate ? 0.5 : 0.5 - w_tau * tau;
     const double w_0 = 1.0 - w_tau - w_1;
     trial_work_ = h * (w_0 * power_ + w_tau * power_alpha + w_1 * trial_power_);
     trial_dissipated_ =

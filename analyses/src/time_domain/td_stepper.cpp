@@ -75,6 +75,7 @@ bool TdStepper::AdvanceTo(double t1) {
     if (steps_ + rejected_ >= options_.max_steps) {
       message_ = "time integration: max_steps = " + std::to_string(options_.max_steps) +
                  " reached at t = " + std::to_string(t_) + " s";
+      budget_exhausted_ = true;
       return false;
     }
     // A jump of a piecewise-constant coefficient ahead: step to just before it, then across.
@@ -105,7 +106,9 @@ bool TdStepper::AdvanceTo(double t1) {
         return false;
       }
       if (steps_ + rejected_ >= options_.max_steps) {
-        message_ = "time integration: max_steps reached while reducing the step";
+        message_ = "time integration: max_steps = " + std::to_string(options_.max_steps) +
+                   " reached while reducing the step at t = " + std::to_string(t_) + " s";
+        budget_exhausted_ = true;
         return false;
       }
       err = TrialStep(h);

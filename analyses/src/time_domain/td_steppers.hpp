@@ -51,6 +51,9 @@ class TdStepper {
   double last_event_time() const { return last_event_time_; }
   long evaluations() const { return evaluations_; }
   const std::string& message() const { return message_; }
+  /// True when the last AdvanceTo stopped at options.max_steps: the run did not finish (a
+  /// budget, not a numerical failure; time_response.hpp: "exceeded → kNotConverged").
+  bool budget_exhausted() const { return budget_exhausted_; }
   /// θ at local time t [rad].
   double Phase(double t) const { return theta0_ + omega_ * t; }
 
@@ -91,6 +94,7 @@ class TdStepper {
   long steps_ = 0, rejected_ = 0, events_ = 0, evaluations_ = 0, breaks_ = 0;
   double last_event_time_ = std::numeric_limits<double>::quiet_NaN();
   std::string message_;
+  bool budget_exhausted_ = false;
 
  private:
   /// Locates the earliest switching-function zero in the trial step and leaves the trial just

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <complex>
 #include <exception>
 #include <iomanip>
 #include <limits>
@@ -16,6 +17,7 @@
 #include <sstream>
 
 #include "../floquet/floquet_internal.hpp"
+#include "geardyn/analyses/harmonic_balance.hpp"
 #include "geardyn/common/check.hpp"
 #include "geardyn/common/errors.hpp"
 #include "geardyn/system/probes.hpp"
@@ -99,14 +101,76 @@ Status Worse(Status a, Status b) {
 }
 
 /// Error scales from a reference state: c_i = max(|x_i|, 1e-3·max|x|) (1e-6 without any
-/// deflection), velocities ω_m·c_i.
-TdScales MakeScales(const VectorX& x, double omega) {
+/// deflection), velocities ω_v·c_i with ω_v = max(ω_m, ω_floor).
+///
+/// ω_floor (issue 16): double precision cannot resolve a velocity finer than about
+/// ε·ω_max·c (round-off of an acceleration ~ ω_max² c over a step ~ 1/ω_max, ω_max the highest
+/// natural frequency). At a very low speed (1e-3 Hz on a 4.6 kHz pair: ω_m/ω_max = 2e-7) the
+/// velocity tolerance atol·ω_m·c fell below that round-off, generalized-α's Newton never met
+/// it, and ~1e6 steps were rejected. The velocity scale is floored so that the Newton test
+/// (update ≤ newton_tolerance × atol·scale) stays 10× above round-off:
+/// ω_floor = min(ω_max, 10 ε ω_max / (atol·newton_tolerance)). It is below ω_m (no change) at
+/// every ordinary speed: ω_m/ω_max > 2e-3 at atol = 1e-10, > 2e-5 at the default 1e-8.
+TdScales MakeScales(const VectorX& x, double omega, double w_max,
+                    const TimeIntegrationOptions& io) {
   TdScales s;
   double top = x.lpNorm<Eigen::Infinity>();
   if (!(top > 0.0)) top = 1e-6;
   s.x = x.cwiseAbs().cwiseMax(1e-3 * top);
-  s.v = omega * s.x;
+  const double eps = std::numeric_limits<double>::epsilon();
+  const double floor =
+      std::isfinite(w_max)
+          ? std::min(w_max, 10.0 * eps * w_max / (io.absolute_tolerance * io.newton_tolerance))
+          : 0.0;
+  s.v = std::max(omega, floor) * s.x;
   return s;
+}
+
+/// The periodic solution of the linear HB at θ₀ (TimeResponseOptions::
+/// start_from_linear_steady_state): q = Q_0 + 2 Re Σ_k Q_k e^{ikθ/P}, q̇ = 2 Re Σ_k ikΩ Q_k
+/// e^{ikθ/P}, Ω = ω_m/P (harmonic_balance.hpp). False (the caller keeps the static start) when
+/// the mean system has an undamped mode (no attracting periodic orbit: the run from the static
+/// start reports the transient that never decays), or the HB throws, fails or gives non-finite
+/// harmonics.
+bool LinearSteadyStart(const SystemModel& model, double f_m, double theta0, double tolerance,
+                       VectorX* x, VectorX* v) {
+  try {
+    if (!internal::UndampedModes(model).empty()) return false;
+  } catch (const std::exception&) {
+    return false;
+  }
+  HbOptions ho;
+  ho.tolerance = std::max(tolerance, 1e-10);
+  ho.max_harmonics = 128;
+  ho.compute_forces = false;
+  ho.keep_harmonics = true;
+  HbResult hb;
+  try {
+    hb = SolveHarmonicBalance(model, ho, f_m);
+  } catch (const std::exception&) {
+    return false;  // a model the linear HB does not take: the static start
+  }
+  const bool usable =
+      hb.summary.status == Status::kSuccess || hb.summary.status == Status::kToleranceNotMet;
+  const MatrixXc& q = hb.response_harmonics;
+  if (!usable || q.size() == 0 || !q.allFinite() || q.rows() != model.num_dofs()) return false;
+  const double P = static_cast<double>(hb.period_meshes);
+  const double big_omega = 2.0 * std::numbers::pi * f_m / P;
+  *x = VectorX::Zero(q.rows());
+  *v = VectorX::Zero(q.rows());
+  for (Eigen::Index j = 0; j < q.cols(); ++j) {
+    const int k =
+        hb.sparse_harmonics ? hb.kept_harmonics[static_cast<std::size_t>(j)] : static_cast<int>(j);
+    const std::complex<double> z = std::polar(1.0, k * theta0 / P);
+    if (k == 0) {
+      *x += q.col(j).real();
+      continue;
+    }
+    const VectorXc qz = q.col(j) * z;
+    *x += 2.0 * qz.real();
+    *v += -2.0 * k * big_omega * qz.imag();  // 2 Re(ikΩ Q_k z)
+  }
+  return x->allFinite() && v->allFinite();
 }
 
 /// Running statistics of a sampled signal.
@@ -169,6 +233,14 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
     }
     x0 = st.x;
     reference = st.x;
+    if (options.start_from_linear_steady_state && !sys.has_nonlinear() && sys.n == sys.num_dofs) {
+      VectorX xh, vh;
+      if (LinearSteadyStart(model, f_m, theta0, so.tolerance, &xh, &vh)) {
+        x0 = xh;
+        v0 = vh;
+        summary.counters["linear_hb_start"] = 1;
+      }
+    }
   } else {
     GEARDYN_THROW_UNLESS(options.initial_state.size() == 2 * n,
                          "initial_state: must have 2·(num_dofs + internal) = "
@@ -180,17 +252,25 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
 
   // kAuto: explicit unless the highest frequency times the accuracy step is large (stiff).
   const double mesh_period = 2.0 * std::numbers::pi / omega;
+  TimeIntegrationOptions run_io = io;  // kAuto may change ρ∞ (below)
   TimeIntegrator method = io.integrator;
+  const double w_max = internal::EstimateHighestFrequency(sys, ws, theta0, x0);
   if (method == TimeIntegrator::kAuto) {
-    const double w_max = internal::EstimateHighestFrequency(sys, ws, theta0, x0);
     const double ratio = w_max * mesh_period / io.samples_per_period;
     method = ratio < io.auto_stiffness_limit ? TimeIntegrator::kRungeKutta
                                              : TimeIntegrator::kGeneralizedAlpha;
+    if (method == TimeIntegrator::kGeneralizedAlpha && ratio > kAutoQuasiStaticStiffness &&
+        run_io.spectral_radius > 0.0) {
+      // Issue 16 (time_response.hpp, TimeIntegrationOptions::integrator): annihilate the
+      // unresolved modes in one step instead of ρ∞ per step.
+      run_io.spectral_radius = 0.0;
+      summary.counters["auto_rho_zero"] = 1;
+    }
     summary.counters["auto_stiffness_ratio_x1000"] = static_cast<long>(1000.0 * ratio);
   }
   out.integrator_used = method;
-  auto stepper =
-      internal::MakeStepper(method, sys, io, MakeScales(reference, omega), omega, theta0);
+  auto stepper = internal::MakeStepper(method, sys, run_io, MakeScales(reference, omega, w_max, io),
+                                       omega, theta0);
   stepper->Reset(0.0, x0, v0);
 
   // The period of the steady test: P_S mesh cycles, over which the steady state repeats up to
@@ -238,6 +318,10 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
   // The expected state at the next period start if the response were steady: S × this one.
   VectorX prev_x = shifted(rigid_projector(x0)), prev_v = shifted(rigid_projector(v0));
   int consecutive = 0;
+  // Largest period-to-period change in the third and in the last quarter of max_periods: their
+  // ratio is the decay of a slowly settling transient (the message of a run that ends unsteady).
+  const int quarter = so.max_periods / 4;
+  double third_quarter_change = 0.0, last_quarter_change = 0.0, final_change = 0.0;
   std::vector<double> first_level(static_cast<std::size_t>(num_meshes), 0.0);
   int grown = -1;
   bool steady = false;
@@ -279,7 +363,10 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
     for (long s = 1; s <= samples; ++s) {
       if (!stepper->AdvanceTo(t_begin +
                               period * static_cast<double>(s) / static_cast<double>(samples))) {
-        summary.status = Status::kNumericalIssue;
+        // A step budget exhausted is "did not finish" (kNotConverged, as time_response.hpp
+        // documents for max_steps; issue 16), anything else a numerical failure.
+        summary.status =
+            stepper->budget_exhausted() ? Status::kNotConverged : Status::kNumericalIssue;
         summary.message = stepper->message();
         return false;
       }
@@ -425,6 +512,12 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
     prev_x = shifted(x);
     prev_v = shifted(v);
     consecutive = (p + 1 >= so.min_periods && change < so.tolerance) ? consecutive + 1 : 0;
+    if (quarter > 0 && p >= 2 * quarter && p < 3 * quarter) {
+      third_quarter_change = std::max(third_quarter_change, change);
+    } else if (quarter > 0 && p >= 3 * quarter) {
+      last_quarter_change = std::max(last_quarter_change, change);
+    }
+    final_change = change;
     if (progress) {
       progress(static_cast<double>(p + 1) / so.max_periods,
                "period " + std::to_string(p + 1) + ", change " + std::to_string(change));
@@ -448,6 +541,26 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
           "damping_ratio, the [mesh.contact] damping of a tooth-contact mesh, bearing damping)";
     } else {
       summary.message += UndampedModesNote(model);
+      // Issue 16: a transient that decays, only too slowly (a lightly damped mode far below the
+      // mesh frequency: ~1.3e4 periods at 1e6 Hz on a 4.6 kHz pair with ζ = 0.05), gets an
+      // estimate of the periods it needs. The maxima over a quarter of the run each span many
+      // cycles of the free vibration sampled once per period, so their ratio is the envelope's.
+      const double rate = quarter >= 8 && third_quarter_change > 0.0 && last_quarter_change > 0.0
+                              ? std::pow(last_quarter_change / third_quarter_change, 1.0 / quarter)
+                              : std::numeric_limits<double>::quiet_NaN();
+      if (rate > 0.0 && rate < 1.0 - 1e-9 && std::isfinite(rate)) {
+        out.transient_decay_per_period = rate;
+        const double more =
+            std::log(so.tolerance / std::max(final_change, so.tolerance)) / std::log(rate);
+        const double needed = static_cast<double>(so.max_periods) + std::max(more, 0.0);
+        std::ostringstream note;
+        note << std::setprecision(3) << "; the transient decays by a factor " << rate
+             << " per period (the free vibration of a lightly damped mode): about " << needed
+             << " periods would reach the tolerance — raise max_periods (--max-periods) to "
+             << static_cast<long>(std::ceil(1.2 * needed)) << ", or start closer to the steady "
+             << "state (a linear model starts from the linear HB solution)";
+        summary.message += note.str();
+      }
     }
   }
 

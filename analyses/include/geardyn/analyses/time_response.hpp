@@ -67,6 +67,9 @@ namespace geardyn {
 /// factorizations.
 inline constexpr int kSparseStateThreshold = 200;
 
+/// kAuto's quasi-static threshold on ω_max·Δt_acc (TimeIntegrationOptions::integrator).
+inline constexpr double kAutoQuasiStaticStiffness = 1e4;
+
 /// @brief The integration method.
 enum class TimeIntegrator {
   kAuto,              ///< chosen per run by the stiffness rule (TimeIntegrationOptions)
@@ -83,7 +86,12 @@ struct TimeIntegrationOptions {
   /// Method. kAuto: with ω_max the highest undamped natural frequency of the mean linear system
   /// [rad/s] and Δt_acc = mesh period / samples_per_period, the explicit kRungeKutta when
   /// ω_max·Δt_acc < auto_stiffness_limit (its stable step is not far below the accuracy step),
-  /// otherwise kGeneralizedAlpha (stiff: tooth bodies, stiff bearings).
+  /// otherwise kGeneralizedAlpha (stiff: tooth bodies, stiff bearings). Beyond
+  /// ω_max·Δt_acc > kAutoQuasiStaticStiffness (quasi-static speeds: the highest mode is not
+  /// resolved by many orders) kAuto runs generalized-α with ρ∞ = 0 instead of spectral_radius:
+  /// with ρ∞ near 1 the spurious root of the unresolved modes decays only by ρ∞ per step and its
+  /// acceleration swamps the local error estimate (issue 16: 1e-3 Hz on a 4.6 kHz pair took
+  /// 7e5 steps per period and never settled; with ρ∞ = 0, 1.2e4). Counter "auto_rho_zero".
   TimeIntegrator integrator = TimeIntegrator::kAuto;
   double auto_stiffness_limit = 50.0;  ///< kAuto threshold on ω_max·Δt_acc [-], in (0, 1e6]
   /// Local relative error tolerance per step [-], in [1e-14, 1e-2].
@@ -205,6 +213,10 @@ struct TimeResponse {
   /// (and their statistics) are those of the last complete integrated period — not a steady
   /// state (force, channels and element forces empty). Added in session 25 ("qs").
   bool history_from_transient = false;
+  /// A run that ended unsteady at max_periods with a decaying transient: the decay factor of the
+  /// period-to-period change per period, measured from its maxima over the last two quarters of
+  /// the run (in (0, 1); the message estimates the periods needed). 0 otherwise (issue 16).
+  double transient_decay_per_period = 0.0;
   Summary summary;
 };
 
@@ -215,6 +227,14 @@ struct TimeResponseOptions {
   /// Start from the static equilibrium at θ₀ (SolveTimeDomainStatic) at rest; otherwise from
   /// `initial_state` (size 2·(num_dofs + internal)).
   bool start_from_static = true;
+  /// With start_from_static and only linear meshes (no nonlinear core): start from the periodic
+  /// solution of the linear harmonic balance at θ₀ (position and velocity) instead of the static
+  /// equilibrium at rest; the static start when the HB fails or the mean system has an
+  /// undamped mode (no attracting periodic orbit to start on). A lightly damped mode far below
+  /// the mesh frequency decays over ln(1/tolerance)/(ζ ω_n T) periods (≈ 1.3e4 at 1e6 Hz on a
+  /// 4.6 kHz pair with ζ = 0.05, issue 16): from the HB state there is (almost) nothing to
+  /// decay, and the steady test still checks the integrated periods.
+  bool start_from_linear_steady_state = true;
   VectorX initial_state;
   double initial_phase = 0.0;  ///< θ₀ [rad]
   /// False (with the field, value and bound in `why`) on an invalid value.
