@@ -95,8 +95,8 @@
 /// harmonic 0; the others are copies shifted by ±ikω) — only for P = I (uncondensed problems).
 #pragma once
 
-#include <atomic>
 #include <array>
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <string>
