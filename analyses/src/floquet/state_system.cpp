@@ -204,9 +204,14 @@ StateSystem MakeStateSystem(const PeriodicSecondOrderSystem& system, bool deflat
   }
   const int r = out.num_rigid, f = n - r;
   out.dim = 2 * f;
-  const auto Lt = L.transpose().triangularView<Eigen::Upper>();
-  out.basis = Lt.solve(W);                            // B = L⁻ᵀ W, Bᵀ M B = I
-  out.rigid = Lt.solve(U);                            // R = L⁻ᵀ U, Rᵀ M R = I
+  // X = L⁻ᵀ Y; an empty Y (no rigid mode, or no flexible one) is not solved: Eigen's triangular
+  // solve binds a reference to the null data of an empty matrix (UBSan).
+  auto solve_lt = [&L](const MatrixX& Y) {
+    if (Y.cols() == 0) return MatrixX(Y.rows(), 0);
+    return MatrixX(L.transpose().triangularView<Eigen::Upper>().solve(Y));
+  };
+  out.basis = solve_lt(W);                            // B = L⁻ᵀ W, Bᵀ M B = I
+  out.rigid = solve_lt(U);                            // R = L⁻ᵀ U, Rᵀ M R = I
   out.basis_inverse = W.transpose() * L.transpose();  // y = Wᵀ Lᵀ q
   out.rigid_inverse = U.transpose() * L.transpose();
   const MatrixX Kf = W.transpose() * Kt * W;
