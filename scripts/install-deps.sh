@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
 # Installs the Debian packages geardyn needs, only those that are missing.
-# --fuzz also installs clang and its libFuzzer/sanitizer runtimes (scripts/run-fuzzers.sh).
+# --clang (or --fuzz) also installs clang and its sanitizer and libFuzzer runtimes: the sanitized
+# test build (scripts/run-tests.sh) and the fuzzers (scripts/run-fuzzers.sh).
 set -euo pipefail
 packages=(build-essential cmake ninja-build pkg-config libeigen3-dev libarpack2-dev liblapack-dev libfftw3-dev libgsl-dev
           libgtest-dev libgmock-dev libbenchmark-dev libtomlplusplus-dev libcli11-dev
           nlohmann-json3-dev)
 for arg in "$@"; do
   case "$arg" in
-    --fuzz) packages+=(clang libclang-rt-14-dev) ;;
-    *) echo "install-deps.sh: unknown argument '$arg' (known: --fuzz)" >&2; exit 2 ;;
+    --clang | --fuzz) packages+=(clang libclang-rt-14-dev) ;;
+    *) echo "install-deps.sh: unknown argument '$arg' (known: --clang, --fuzz)" >&2; exit 2 ;;
   esac
 done
 missing=()

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "geardyn/analyses/floquet_verdict.hpp"
+#include "geardyn/csv_cell.hpp"
 #include "geardyn/region_plot.hpp"
 #include "geardyn/stability_chart_runner.hpp"
 #include "geardyn/svg_plot.hpp"
@@ -348,17 +349,17 @@ std::string FormatCompareLevelsCsv(const CompareResult& r) {
   for (const LevelRun& run : r.runs) {
     const LevelComparison* c = ComparisonOf(r, run.level);
     const LevelNumbers n = NumbersOf(c);
-    const auto csv = [](double v) { return std::isfinite(v) ? Num(v, "%.10g") : "nan"; };
+    const auto csv = [](double v) { return CsvNumber(v, "%.10g"); };
     s << run.level << "," << run.num_dofs << "," << Verdict(c, CompareAnalysis::kModes) << ","
-      << csv(n.modes_max) << "," << (n.absent >= 0 ? std::to_string(n.absent) : "nan") << ","
+      << csv(n.modes_max) << "," << (n.absent >= 0 ? std::to_string(n.absent) : "") << ","
       << Verdict(c, CompareAnalysis::kFloquet) << ","
-      << (run.floquet ? csv(run.floquet->max_abs_multiplier) : "nan") << "," << csv(n.floquet)
-      << "," << Verdict(c, CompareAnalysis::kHb) << "," << (run.dte ? run.dte->source : "") << ","
-      << csv(n.dte_max) << "," << (c && c->dte ? csv(c->dte->max_at_hz) : "nan") << ","
+      << (run.floquet ? csv(run.floquet->max_abs_multiplier) : "") << "," << csv(n.floquet) << ","
+      << Verdict(c, CompareAnalysis::kHb) << "," << (run.dte ? run.dte->source : "") << ","
+      << csv(n.dte_max) << "," << (c && c->dte ? csv(c->dte->max_at_hz) : "") << ","
       << csv(n.dte_rms) << "," << csv(n.peak_shift) << ","
-      << (run.modes ? csv(run.modes_time_s) : "nan") << ","
-      << (run.floquet ? csv(run.floquet_time_s) : "nan") << ","
-      << (run.dte ? csv(run.dte->wall_time_s) : "nan") << "\n";
+      << (run.modes ? csv(run.modes_time_s) : "") << ","
+      << (run.floquet ? csv(run.floquet_time_s) : "") << ","
+      << (run.dte ? csv(run.dte->wall_time_s) : "") << "\n";
   }
   return s.str();
 }
@@ -371,9 +372,8 @@ std::string FormatCompareModesCsv(const CompareResult& r) {
     for (const ModeMatch& m : c.modes->matches) {
       s << c.level << "," << m.reference + 1 << "," << Num(m.reference_hz, "%.10g") << ","
         << (m.other >= 0 ? std::to_string(m.other + 1) : "") << ","
-        << (std::isfinite(m.other_hz) ? Num(m.other_hz, "%.10g") : "nan") << ","
-        << (std::isfinite(m.relative_difference) ? Num(m.relative_difference, "%.6g") : "nan")
-        << "," << Num(m.mac, "%.6f") << "\n";
+        << CsvNumber(m.other_hz, "%.10g") << "," << CsvNumber(m.relative_difference, "%.6g") << ","
+        << Num(m.mac, "%.6f") << "\n";
     }
   }
   return s.str();
@@ -392,15 +392,15 @@ std::string FormatCompareDteCsv(const CompareResult& r) {
     }
   }
   s << "\n";
-  const auto csv = [](double v) { return std::isfinite(v) ? Num(v, "%.10g") : "nan"; };
+  const auto csv = [](double v) { return CsvNumber(v, "%.10g"); };
   for (std::size_t k = 0; k < r.frequencies_hz.size(); ++k) {
     s << Num(r.frequencies_hz[k], "%.10g");
     for (const LevelRun* run : runs) {
       const LevelDte& d = *run->dte;
       const LevelComparison* c = ComparisonOf(r, run->level);
       s << "," << csv(d.rms_up[k]) << "," << csv(d.rms_down[k]) << "," << csv(d.peak_to_peak_up[k])
-        << "," << csv(d.peak_to_peak_down[k]) << "," << (c && c->dte ? csv(c->dte->up[k]) : "nan")
-        << "," << (c && c->dte ? csv(c->dte->down[k]) : "nan");
+        << "," << csv(d.peak_to_peak_down[k]) << "," << (c && c->dte ? csv(c->dte->up[k]) : "")
+        << "," << (c && c->dte ? csv(c->dte->down[k]) : "");
     }
     s << "\n";
   }
@@ -487,10 +487,8 @@ std::string FormatCompareChartCsv(const CompareResult& r) {
       for (int ix = 0; ix < c.x_axis.num_points; ++ix) {
         const std::size_t k = static_cast<std::size_t>(iy) * c.x_axis.num_points + ix;
         s << run.level << "," << Num(c.x_axis.Value(ix), "%.10g") << ","
-          << Num(c.y_axis.Value(iy), "%.10g") << ","
-          << (std::isfinite(c.max_abs_multiplier[k]) ? Num(c.max_abs_multiplier[k], "%.10g")
-                                                     : "nan")
-          << "," << (c.ok[k] ? (c.stable[k] ? "1" : "0") : "nan") << "\n";
+          << Num(c.y_axis.Value(iy), "%.10g") << "," << CsvNumber(c.max_abs_multiplier[k], "%.10g")
+          << "," << CsvVerdict(c.ok[k], c.stable[k]) << "\n";
       }
     }
   }
@@ -504,13 +502,13 @@ std::string FormatCompareVaryCsv(const std::string& key, const std::vector<Compa
   s << "value,key,level,modes_max_abs_rel_diff,modes_in_plane,modes_out_of_plane,modes_absent,"
        "floquet_difference,dte_max_abs_diff,dte_rms_diff,dte_peak_shift,modes_verdict,"
        "floquet_verdict,dte_verdict\n";
-  const auto csv = [](double x) { return std::isfinite(x) ? Num(x, "%.10g") : "nan"; };
+  const auto csv = [](double x) { return CsvNumber(x, "%.10g"); };
   for (const CompareVaryPoint& p : v) {
     for (const LevelComparison& c : p.result.comparisons) {
       const LevelNumbers n = NumbersOf(&c);
       s << Num(p.value, "%.10g") << "," << key << "," << c.level << "," << csv(n.modes_max) << ","
         << csv(n.modes_in_plane) << "," << csv(n.modes_out_of_plane) << ","
-        << (n.absent >= 0 ? std::to_string(n.absent) : "nan") << "," << csv(n.floquet) << ","
+        << (n.absent >= 0 ? std::to_string(n.absent) : "") << "," << csv(n.floquet) << ","
         << csv(n.dte_max) << "," << csv(n.dte_rms) << "," << csv(n.peak_shift) << ","
         << Verdict(&c, CompareAnalysis::kModes) << "," << Verdict(&c, CompareAnalysis::kFloquet)
         << "," << Verdict(&c, CompareAnalysis::kHb) << "\n";

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/csv_cell.hpp"
 #include "geardyn/svg_plot.hpp"
 
 namespace geardyn::app {
@@ -29,11 +30,8 @@ bool ParseDouble(const std::string& text, double* value) {
 
 std::vector<double> ToStd(const Vector6& v) { return {v.data(), v.data() + 6}; }
 
-std::string Num(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.9g", v);
-  return buffer;
-}
+// A CSV cell: empty for a value that does not exist (csv_cell.hpp).
+std::string Num(double v) { return CsvNumber(v); }
 
 // The stability of point i as JSON (null without a stability pass).
 json PointStability(const HbStabilitySweep* stability, std::size_t i) {

@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 
+#include "geardyn/csv_cell.hpp"
 #include "geardyn/svg_plot.hpp"
 
 namespace geardyn::app {
@@ -25,11 +26,11 @@ json FiniteArray(const double* data, Eigen::Index n) {
   return a;
 }
 
-std::string Num(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.9g", v);
-  return buffer;
-}
+// A CSV cell: empty for a value that does not exist (csv_cell.hpp).
+std::string Num(double v) { return CsvNumber(v); }
+
+// A number in the text report: "—" for a value that does not exist.
+std::string Text(double v) { return std::isfinite(v) ? CsvNumber(v) : std::string("—"); }
 
 // A JSON number for the table, NaN for null.
 double Get(const json& v) { return v.is_number() ? v.get<double>() : kNaN; }
@@ -157,14 +158,13 @@ std::string FormatNhbCsv(const SystemNhbCurve& curve, bool stability_computed) {
   os << "\n";
   for (const SystemNhbPoint& r : curve.points) {
     os << Num(r.mesh_frequency_hz) << "," << r.point.branch << ","
-       << (!stability_computed                           ? ""
-           : r.point.stable == FloquetVerdict::kStable   ? "1"
-           : r.point.stable == FloquetVerdict::kUnstable ? "0"
-                                                         : "nan")
+       << (stability_computed ? CsvVerdict(r.point.stable != FloquetVerdict::kUndetermined,
+                                           r.point.stable == FloquetVerdict::kStable)
+                              : "")
        << ","
-       << (!stability_computed             ? std::string()
-           : r.point.max_multiplier == 0.0 ? Num(kNaN)  // not computed at a failed point
-                                           : Num(r.point.max_multiplier))
+       << (!stability_computed || r.point.max_multiplier == 0.0  // 0: not computed (failed point)
+               ? std::string()
+               : Num(r.point.max_multiplier))
        << "," << (stability_computed ? Num(r.point.error_estimate) : std::string()) << ","
        << StatusName(r.point.status);
     for (const SystemNhbMeshOutput& m : r.meshes) {
@@ -234,8 +234,8 @@ std::string FormatNhbText(const json& report) {
     os << "folds [Hz] (estimated error of locating each):";
     const json& errors = report["fold_errors_hz"];
     for (size_t i = 0; i < report["folds_hz"].size(); ++i) {
-      os << " " << Num(Get(report["folds_hz"][i]));
-      if (i < errors.size()) os << " (±" << Num(Get(errors[i])) << ")";
+      os << " " << Text(Get(report["folds_hz"][i]));
+      if (i < errors.size()) os << " (±" << Text(Get(errors[i])) << ")";
     }
     os << "\n";
   }

@@ -13,6 +13,7 @@
 #include "geardyn/cli.hpp"
 #include "geardyn/command.hpp"
 #include "geardyn/common/errors.hpp"
+#include "geardyn/csv_cell.hpp"
 #include "geardyn/output_files.hpp"
 #include "geardyn/region_plot.hpp"
 #include "geardyn/stability_chart_runner.hpp"
@@ -108,16 +109,13 @@ std::string PointsCsv(const StabilityChartResult& c) {
     for (int ix = 0; ix < c.x_axis.num_points; ++ix) {
       const int i = c.index(ix, iy);
       const int r = c.region[i];
-      s << c.x_axis.Value(ix) << "," << c.y_axis.Value(iy) << "," << c.mesh_frequency_hz[i] << ","
-        << c.max_abs_multiplier[i] << "," << c.error_estimate[i]
-        << ","
-        // 1/0/nan as the hb CSVs (design.md "Three-valued verdict"): an undetermined point's
-        // `stable` is not 0 (it read as unstable; only `ok` showed the failure).
-        << (!c.ok[i]      ? "nan"
-            : c.stable[i] ? "1"
-                          : "0")
-        << "," << int{c.ok[i]} << "," << r << "," << (r >= 0 ? RegionLabel(c.regions[r]) : "")
-        << "\n";
+      // An undetermined point's `stable` is empty, not 0 (it read as unstable; only `ok` showed
+      // the failure), and so are its non-finite numbers (csv_cell.hpp).
+      s << CsvNumber(c.x_axis.Value(ix), "%.17g") << "," << CsvNumber(c.y_axis.Value(iy), "%.17g")
+        << "," << CsvNumber(c.mesh_frequency_hz[i], "%.17g") << ","
+        << CsvNumber(c.max_abs_multiplier[i], "%.17g") << ","
+        << CsvNumber(c.error_estimate[i], "%.17g") << "," << CsvVerdict(c.ok[i], c.stable[i]) << ","
+        << int{c.ok[i]} << "," << r << "," << (r >= 0 ? RegionLabel(c.regions[r]) : "") << "\n";
     }
   }
   return s.str();

@@ -166,12 +166,13 @@ TEST(BiarcFlankTest, GradientsMatchFiniteDifferences) {
     (c.corner ? corners : flanks)++;
     for (int i = 0; i < 6; ++i) {
       const double h = i % 3 == 2 ? 1e-9 : 1e-10;
-      auto eval = [&](double step) {
+      // The rolls by value: clang 14 cannot capture a structured binding (P1091, clang 16).
+      auto eval = [&, roll_a = ra, roll_b = rb](double step) {
         PlacedFlanks q = p;
         double* v[6] = {&q.a.center.x(), &q.a.center.y(), &q.a.base_angle,
                         &q.b.center.x(), &q.b.center.y(), &q.b.base_angle};
         *v[i] += step;
-        return CalcBiarcContactNear(a, q.a, ra, b, q.b, rb);
+        return CalcBiarcContactNear(a, q.a, roll_a, b, q.b, roll_b);
       };
       const FlankContact cp = eval(h), cm = eval(-h);
       ASSERT_EQ(cp.corner, c.corner);
