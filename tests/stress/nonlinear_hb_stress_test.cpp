@@ -245,8 +245,11 @@ struct UndampedCase {
   /// Driven at the natural frequency 1: the orbit is unbounded, a status is required. (At
   /// Ω = 1/3, harmonic 3 sits on ω_n but is not loaded: the particular solution is exact, the
   /// free vibration adds a non-unique part; the engine returns the particular one — checked as
-  /// a closed form. The linear HB reports kNumericalIssue in the same situation.)
+  /// a closed form — and warns that the solution is not unique. The linear HB reports
+  /// kNumericalIssue in the same situation.)
   bool singular;
+  /// A harmonic kΩ on ω_n without load: the summary must warn of the non-unique solution.
+  bool non_unique = false;
 };
 
 void PrintTo(const UndampedCase& c, std::ostream* os) { *os << c.name; }
@@ -265,6 +268,10 @@ TEST_P(NonlinearHbUndampedStress, ClosedFormOrStatus) {
     return;
   }
   ASSERT_TRUE(r.summary.ok()) << c.name << ": " << r.summary.BriefReport();
+  bool warned = false;
+  for (const std::string& w : r.summary.warnings)
+    warned |= w.find("not unique") != std::string::npos;
+  EXPECT_EQ(warned, c.non_unique) << c.name << ": " << ::testing::PrintToString(r.summary.warnings);
   const double A = 0.05 / std::abs(1.0 - c.omega * c.omega);
   EXPECT_NEAR(r.point.mean[0], 0.1, 1e-10) << c.name;
   EXPECT_NEAR(r.point.rms[0], A / std::sqrt(2.0), 1e-9 * A) << c.name;
@@ -273,7 +280,7 @@ TEST_P(NonlinearHbUndampedStress, ClosedFormOrStatus) {
 INSTANTIATE_TEST_SUITE_P(
     Cases, NonlinearHbUndampedStress,
     ::testing::Values(UndampedCase{"exactly_at_resonance", 1.0, true},
-                      UndampedCase{"third_harmonic_at_resonance", 1.0 / 3.0, false},
+                      UndampedCase{"third_harmonic_at_resonance", 1.0 / 3.0, false, true},
                       UndampedCase{"below_resonance", 0.7, false},
                       UndampedCase{"above_resonance", 1.9, false},
                       UndampedCase{"just_1e6th_below_resonance", 1.0 - 1e-6, false}),

@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <numbers>
 #include <variant>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/numerics/fftw_planner.hpp"
 #include "hb_internal.hpp"
 
 namespace geardyn::internal {
@@ -30,6 +32,7 @@ struct HbOutputSampler::Fft {
     dte_samples = fftw_alloc_real(static_cast<size_t>(std::max(meshes, 1)) * S);
     GEARDYN_DEMAND(spec && samples && dte_spec && dte_samples);
     int size[1] = {S};
+    const std::lock_guard<std::mutex> lock(FftwPlannerMutex());
     c2r = fftw_plan_many_dft_c2r(1, size, std::max(n, 1), spec, nullptr, 1, half, samples, nullptr,
                                  1, S, FFTW_ESTIMATE);
     r2c = fftw_plan_many_dft_r2c(1, size, std::max(meshes, 1), dte_samples, nullptr, 1, S, dte_spec,
@@ -37,8 +40,11 @@ struct HbOutputSampler::Fft {
     GEARDYN_DEMAND(c2r && r2c);
   }
   ~Fft() {
-    fftw_destroy_plan(c2r);
-    fftw_destroy_plan(r2c);
+    {
+      const std::lock_guard<std::mutex> lock(FftwPlannerMutex());
+      fftw_destroy_plan(c2r);
+      fftw_destroy_plan(r2c);
+    }
     fftw_free(spec);
     fftw_free(samples);
     fftw_free(dte_spec);

@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <numbers>
 #include <utility>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/numerics/fftw_planner.hpp"
 #include "nonlinear_hb/solver_impl.hpp"
 
 namespace geardyn {
@@ -17,6 +19,17 @@ NhbSolver::Impl::Impl(NhbProblem problem_in, const NhbOptions& options_in, int h
     : problem(std::move(problem_in)),
       options(options_in),
       cached_omega(std::numeric_limits<double>::quiet_NaN()) {
+  // The FFTW buffers and plans are raw: a throw after they are made (a law without the form it
+  // needs, bad sizes, bad_alloc) would skip ~Impl and leak them (LeakSanitizer).
+  try {
+    Construct(harmonics);
+  } catch (...) {
+    ReleaseFftw();
+    throw;
+  }
+}
+
+void NhbSolver::Impl::Construct(int harmonics) {
   n = problem.law->num_coordinates();
   dofs = static_cast<int>(problem.mass.rows());
   H = harmonics;
@@ -40,8 +53,11 @@ NhbSolver::Impl::Impl(NhbProblem problem_in, const NhbOptions& options_in, int h
   time_buf = fftw_alloc_real(static_cast<size_t>(S));
   freq_buf = fftw_alloc_complex(static_cast<size_t>(S / 2 + 1));
   // FFTW_ESTIMATE: planning does not touch the buffers and takes microseconds.
-  r2c = fftw_plan_dft_r2c_1d(S, time_buf, freq_buf, FFTW_ESTIMATE);
-  c2r = fftw_plan_dft_c2r_1d(S, freq_buf, time_buf, FFTW_ESTIMATE);
+  {
+    const std::lock_guard<std::mutex> lock(FftwPlannerMutex());
+    r2c = fftw_plan_dft_r2c_1d(S, time_buf, freq_buf, FFTW_ESTIMATE);
+    c2r = fftw_plan_dft_c2r_1d(S, freq_buf, time_buf, FFTW_ESTIMATE);
+  }
 
   phase.resize(S);
   for (int s = 0; s < S; ++s) phase[s] = p * 2.0 * std::numbers::pi * s / S;
@@ -111,11 +127,19 @@ NhbSolver::Impl::Impl(NhbProblem problem_in, const NhbOptions& options_in, int h
   lu = Eigen::PartialPivLU<MatrixX>(m);
 }
 
-NhbSolver::Impl::~Impl() {
-  if (r2c) fftw_destroy_plan(r2c);
-  if (c2r) fftw_destroy_plan(c2r);
+NhbSolver::Impl::~Impl() { ReleaseFftw(); }
+
+void NhbSolver::Impl::ReleaseFftw() {
+  {
+    const std::lock_guard<std::mutex> lock(FftwPlannerMutex());
+    if (r2c) fftw_destroy_plan(r2c);
+    if (c2r) fftw_destroy_plan(c2r);
+  }
   fftw_free(time_buf);
   fftw_free(freq_buf);
+  r2c = c2r = nullptr;
+  time_buf = nullptr;
+  freq_buf = nullptr;
 }
 
 // u(t_s) = U_0 + Σ_{k=1..H} (U_k e^{ikωt_s} + c.c.): the unnormalised FFTW c2r of the one-sided

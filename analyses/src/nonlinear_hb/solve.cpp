@@ -3,6 +3,7 @@
 /// H→2H change of the RMS of u is below the tolerance (each solve starts from the previous
 /// solution, zero-padded).
 #include <Eigen/LU>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -69,7 +70,20 @@ NhbSolveResult SolveNonlinearHarmonicBalance(const NhbProblem& problem, double o
       VectorX r;
       MatrixX J;
       solver.Evaluate(*x, omega, &r, &J, nullptr);
-      jacobian_rcond = J.allFinite() ? Eigen::PartialPivLU<MatrixX>(J).rcond() : 0.0;
+      // Eigen's rcond() runs Hager's estimator through solves with the factors: with an exactly
+      // zero pivot those solves give inf/NaN and it returned 0.16 for the Jacobian at Ω = ω_n/3,
+      // ζ = 0 (two zero pivots). The smallest over the largest pivot catches that (it never
+      // exceeds 1/cond of U).
+      if (J.allFinite()) {
+        const Eigen::PartialPivLU<MatrixX> lu(J);
+        const VectorX pivots = lu.matrixLU().diagonal().cwiseAbs();
+        const double top = pivots.maxCoeff();
+        const double pivot_ratio = top > 0.0 ? pivots.minCoeff() / top : 0.0;
+        const double estimate = lu.rcond();
+        jacobian_rcond = estimate >= 0.0 ? std::min(estimate, pivot_ratio) : 0.0;  // NaN → 0
+      } else {
+        jacobian_rcond = 0.0;
+      }
     }
     solver.Describe(*x, omega, point);
     if (options.stability != NhbStabilityMethod::kNone && status == Status::kSuccess) {

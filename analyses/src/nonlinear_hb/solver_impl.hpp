@@ -17,6 +17,10 @@ struct NhbSolver::Impl {
   Impl(NhbProblem problem_in, const NhbOptions& options_in, int harmonics);
   ~Impl();
   Impl(const Impl&) = delete;
+  /// The constructor's work (Impl() frees the FFTW resources when it throws).
+  void Construct(int harmonics);
+  /// Destroys the plans and frees the buffers (idempotent).
+  void ReleaseFftw();
   Impl& operator=(const Impl&) = delete;
 
   NhbProblem problem;

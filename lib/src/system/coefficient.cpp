@@ -16,6 +16,7 @@
 #include "geardyn/common/check.hpp"
 #include "geardyn/common/overloaded.hpp"
 #include "geardyn/common/units.hpp"
+#include "geardyn/numerics/fftw_planner.hpp"
 
 namespace geardyn {
 namespace {
@@ -88,11 +89,9 @@ MatrixXc TableDft(const MatrixX& samples) {
   buf.in = fftw_alloc_real(static_cast<size_t>(s_count));
   buf.out = fftw_alloc_complex(static_cast<size_t>(half));
   GEARDYN_DEMAND(buf.in != nullptr && buf.out != nullptr);
-  // The FFTW planner is not thread-safe; executing a plan is.
-  static std::mutex planner_mutex;
   fftw_plan plan;
   {
-    std::lock_guard<std::mutex> lock(planner_mutex);
+    std::lock_guard<std::mutex> lock(FftwPlannerMutex());
     plan = fftw_plan_dft_r2c_1d(s_count, buf.in, buf.out, FFTW_ESTIMATE);
   }
   GEARDYN_DEMAND(plan != nullptr);
@@ -105,7 +104,7 @@ MatrixXc TableDft(const MatrixX& samples) {
     }
   }
   {
-    std::lock_guard<std::mutex> lock(planner_mutex);
+    std::lock_guard<std::mutex> lock(FftwPlannerMutex());
     fftw_destroy_plan(plan);
   }
   return dft;

@@ -221,6 +221,27 @@ TEST(TimeResponse, SpeedsInParallelEqualTheClosedForm) {
   EXPECT_GE(calls, 1);
 }
 
+// The same from the linear HB's steady state (TimeResponseOptions::start_from_linear_steady_state):
+// each thread then makes and destroys FFTW plans for its HB, which FFTW allows only one thread at
+// a time (geardyn/numerics/fftw_planner.hpp; before, those plans were made unlocked). Truth: the
+// closed form, as above.
+TEST(TimeResponse, SpeedsInParallelFromTheLinearHbEqualTheClosedForm) {
+  const TorsionalCase c;
+  TimeResponseOptions o;
+  o.integration.integrator = TimeIntegrator::kRungeKutta;
+  o.integration.relative_tolerance = o.integration.absolute_tolerance = 1e-10;
+  o.steady.tolerance = 1e-9;
+  o.start_from_linear_steady_state = true;
+  std::vector<double> f;
+  for (int i = 0; i < 16; ++i) f.push_back(1200.0 + 500.0 * i);
+  const std::vector<TimeResponse> r = SimulateSpeeds(c.Model(), f, o, 2, {});
+  ASSERT_EQ(r.size(), f.size());
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    ASSERT_TRUE(r[i].summary.ok()) << r[i].summary.BriefReport();
+    EXPECT_NEAR(r[i].meshes[0].rms_dte, c.Rms(f[i]), 1e-6 * c.Rms(f[i])) << f[i];
+  }
+}
+
 // kAuto's rule with the closed-form highest frequency ω_n = √(k/m_e) of the torsional pair (the
 // rigid mode has ω = 0): explicit when ω_n·T_m/S < limit, implicit above.
 TEST(TimeResponse, AutoPicksByStiffness) {
