@@ -32,7 +32,9 @@ app::RegionPlotSpec NarrowStripes(int nx, int ny, int stripes) {
   spec.ok.assign(nx * ny, 1);
   const int pitch = nx / stripes;
   for (int s = 0; s < stripes; ++s) {
-    const int ix = s * pitch + pitch / 2;
+    // Columns ix and ix + 1 of the stripe stay inside its pitch (with pitch / 2 the last stripe
+    // of a pitch-2 grid wrote one column past the end: ASan, heap-buffer-overflow).
+    const int ix = s * pitch + (pitch - 1) / 2;
     app::RegionPlotLabel label{spec.x_values[ix],
                                spec.y_values[ny - 1],
                                "(f_" + std::to_string(s) + "+f_" + std::to_string(s + 10) + ")/2",
