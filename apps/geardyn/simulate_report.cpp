@@ -7,6 +7,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "geardyn/csv_cell.hpp"
 #include "geardyn/svg_plot.hpp"
 
 namespace geardyn::app {
@@ -20,9 +21,8 @@ std::string Num(double v) {
   return buffer;
 }
 
-// CSV cell: the number, or empty for NaN / ∞ (no value: a failed point; "nan" is not a number to
-// a spreadsheet, and an empty cell is what the JSON's null is).
-std::string Cell(double v) { return std::isfinite(v) ? Num(v) : std::string(); }
+// CSV cell: the number, or empty for NaN / ∞ (csv_cell.hpp).
+std::string Cell(double v) { return CsvNumber(v); }
 
 // JSON number or null (NaN and ∞ are not JSON).
 json JsonNumber(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }

@@ -201,13 +201,19 @@ TEST(TimeResponse, TorsionalPairSteadyStateGeneralizedAlphaSparse) {
   CheckSteadyState(TimeIntegrator::kGeneralizedAlpha, 4500.0, 1e-9, 1e-4, /*sparse_threshold=*/1);
 }
 
-// Independent speeds in parallel: each equals the closed form (and so the serial runs).
-TEST(TimeResponse, SpeedsInParallelEqualTheClosedForm) {
-  const TorsionalCase c;
+// Runge–Kutta at 1e-10 to a steady state within 1e-9.
+TimeResponseOptions TightRungeKuttaOptions() {
   TimeResponseOptions o;
   o.integration.integrator = TimeIntegrator::kRungeKutta;
   o.integration.relative_tolerance = o.integration.absolute_tolerance = 1e-10;
   o.steady.tolerance = 1e-9;
+  return o;
+}
+
+// Independent speeds in parallel: each equals the closed form (and so the serial runs).
+TEST(TimeResponse, SpeedsInParallelEqualTheClosedForm) {
+  const TorsionalCase c;
+  const TimeResponseOptions o = TightRungeKuttaOptions();
   const std::vector<double> f = {1200.0, 2500.0, 4000.0, 6000.0, 9000.0};
   int calls = 0;
   const std::vector<TimeResponse> r =
@@ -227,10 +233,7 @@ TEST(TimeResponse, SpeedsInParallelEqualTheClosedForm) {
 // closed form, as above.
 TEST(TimeResponse, SpeedsInParallelFromTheLinearHbEqualTheClosedForm) {
   const TorsionalCase c;
-  TimeResponseOptions o;
-  o.integration.integrator = TimeIntegrator::kRungeKutta;
-  o.integration.relative_tolerance = o.integration.absolute_tolerance = 1e-10;
-  o.steady.tolerance = 1e-9;
+  TimeResponseOptions o = TightRungeKuttaOptions();
   o.start_from_linear_steady_state = true;
   std::vector<double> f;
   for (int i = 0; i < 16; ++i) f.push_back(1200.0 + 500.0 * i);
@@ -304,10 +307,7 @@ TEST(TimeResponse, TableStiffnessEqualsReferenceIntegration) {
                             std::nullopt, MeshDamping::FromCoefficient(c.DampingCoefficient()));
   const SystemModel model = test::TorsionalPair(core, c.torque);
   const double f = 2000.0;
-  TimeResponseOptions o;
-  o.integration.integrator = TimeIntegrator::kRungeKutta;
-  o.integration.relative_tolerance = o.integration.absolute_tolerance = 1e-10;
-  o.steady.tolerance = 1e-9;
+  const TimeResponseOptions o = TightRungeKuttaOptions();
   const TimeResponse r = SimulateSteadyState(model, f, o);
   ASSERT_TRUE(r.summary.ok()) << r.summary.BriefReport();
   EXPECT_GE(r.summary.counters.at("coefficient_jumps"), nodes * r.periods);
