@@ -13,7 +13,7 @@
 #                                       ctest arguments this is still the whole suite: the slow
 #                                       cross-checks of tests/sanitizer_skip.txt run afterwards in
 #                                       the plain build (build/test), which then builds only the
-#                                       test executables that hold them (CI runs it this way)
+#                                       test executables that hold them
 #   GEARDYN_BUILD_DIR=DIR               build directory (default build/test, build/sanitize)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -46,8 +46,8 @@ if [ -z "$sanitize" ]; then
 fi
 
 # The sanitized suite. -O2, not ASan's usual -O1: at -O1 Eigen's small inline kernels are not
-# inlined, and the sanitized tests ran 10–70 times slower than at -O2 (KbRigJumps 891 s against
-# 12.6 s; docs/benchmarks.md "Build and CI time"), for 9 % less compile time.
+# inlined, and the sanitized tests ran 8–70 times slower than at -O2 (KbRigJumps 891 s against
+# 12.6 s; docs/benchmarks.md "Build and CI time"), while -O1 saves only 9 % of the compile time.
 build="${GEARDYN_BUILD_DIR:-$root/build/sanitize}"
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
