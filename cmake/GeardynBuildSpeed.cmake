@@ -27,7 +27,8 @@ endif()
 # geardyn/numerics/eigen_instantiations.hpp).
 set(GEARDYN_PCH_LIBRARY_HEADERS
     <Eigen/Dense> <Eigen/Sparse> <geardyn/numerics/eigen_instantiations.hpp> <algorithm> <array>
-    <cmath> <complex> <functional> <limits> <memory> <numbers> <optional> <sstream> <stdexcept> <string> <utility> <vector>)
+    <cmath> <complex> <functional> <limits> <memory> <numbers> <optional> <sstream> <stdexcept>
+    <string> <utility> <vector>)
 # The tests add GoogleTest, GoogleMock and the JSON library of the command-line tests.
 set(GEARDYN_PCH_TEST_HEADERS ${GEARDYN_PCH_LIBRARY_HEADERS} <gmock/gmock.h> <gtest/gtest.h>
     <nlohmann/json.hpp> <filesystem> <fstream> <regex>)
