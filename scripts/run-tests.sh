@@ -51,7 +51,7 @@ fi
 build="${GEARDYN_BUILD_DIR:-$root/build/sanitize}"
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
-configure "$build" "-DCMAKE_CXX_FLAGS_RELEASE=-O2 -DNDEBUG" -DGEARDYN_SANITIZE="$sanitize"
+configure "$build" "${plain_flags[@]}" -DGEARDYN_SANITIZE="$sanitize"
 cmake --build "$build" -j"$(nproc)"
 if [ "$#" -gt 0 ]; then
   # A chosen set of tests: exactly what the arguments select, sanitized.
