@@ -3,8 +3,9 @@
 # Most of a geardyn translation unit's compile time is parsing Eigen, GoogleTest and
 # nlohmann/json (≈ 3–6 s each at -O2 on the CI machine; measured in docs/benchmarks.md "Build and
 # CI time"), so every library and the test suite precompile them once.
-# GEARDYN_SANITIZE=address,undefined builds everything (libraries, command, tests) with ASan and
-# UBSan; any report aborts the test that triggered it.
+# GEARDYN_SANITIZE=address,undefined builds everything of a build directory (libraries, command,
+# tests) with ASan and UBSan; any report aborts the test that triggered it. CI and run-tests.sh use
+# the cheaper GEARDYN_SANITIZED_TWINS instead (cmake/sanitized_twin/, docs/sanitizers.md).
 
 option(GEARDYN_PRECOMPILED_HEADERS "Precompile the third-party headers (faster builds)" ON)
 set(GEARDYN_SANITIZE "" CACHE STRING

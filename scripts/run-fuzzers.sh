@@ -6,9 +6,11 @@
 #
 #   scripts/run-fuzzers.sh [SECONDS_PER_TARGET]      (default 60)
 #
-# Environment: GEARDYN_FUZZ_BUILD_DIR (default build/fuzz), GEARDYN_FUZZ_JOBS (build jobs,
-# default nproc), GEARDYN_FUZZ_TARGETS (default "scene_reader mesh_tables"), GEARDYN_FUZZ_WORK_DIR
-# (keep the grown corpora there instead of a deleted temporary directory).
+# Environment: GEARDYN_FUZZ_BUILD_DIR (default build/fuzz; a build with sanitized twins and the
+# fuzzers, such as build/test after `GEARDYN_SANITIZE=address,undefined run-tests.sh`, is used as
+# it is), GEARDYN_FUZZ_JOBS (build jobs, default nproc), GEARDYN_FUZZ_TARGETS (default
+# "scene_reader mesh_tables"), GEARDYN_FUZZ_WORK_DIR (keep the grown corpora there instead of a
+# deleted temporary directory).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-60}"
@@ -20,14 +22,21 @@ fi
 
 build="${GEARDYN_FUZZ_BUILD_DIR:-$root/build/fuzz}"
 targets=(${GEARDYN_FUZZ_TARGETS:-scene_reader mesh_tables})
-launcher=()
-command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-# -O1 without NDEBUG: Eigen's and GEARDYN_ASSERT's checks stay on (more bugs found), and the
-# sanitized Eigen code compiles much faster than at -O2 -g.
-cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=None \
-      "-DCMAKE_CXX_FLAGS=-O1 -gline-tables-only" -DGEARDYN_BUILD_FUZZERS=ON \
-      -DGEARDYN_BUILD_TESTS=OFF -DGEARDYN_BUILD_APPS=OFF -DGEARDYN_BUILD_EXAMPLES=OFF \
-      "${launcher[@]}"
+if grep -q '^GEARDYN_SANITIZED_TWINS:STRING=.' "$build/CMakeCache.txt" 2> /dev/null &&
+   grep -q '^GEARDYN_BUILD_FUZZERS:BOOL=ON' "$build/CMakeCache.txt"; then
+  # A test build with sanitized twins and the fuzzers (GEARDYN_SANITIZE=... run-tests.sh): its
+  # fuzz targets link the sanitized twins (-O2, NDEBUG); nothing is configured or compiled again.
+  echo "run-fuzzers.sh: the fuzz targets of the sanitized twins in $build"
+else
+  launcher=()
+  command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  # -O1 without NDEBUG: Eigen's and GEARDYN_ASSERT's checks stay on (more bugs found), and the
+  # sanitized Eigen code compiles much faster than at -O2 -g.
+  cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=None \
+        "-DCMAKE_CXX_FLAGS=-O1 -gline-tables-only" -DGEARDYN_BUILD_FUZZERS=ON \
+        -DGEARDYN_BUILD_TESTS=OFF -DGEARDYN_BUILD_APPS=OFF -DGEARDYN_BUILD_EXAMPLES=OFF \
+        "${launcher[@]}"
+fi
 cmake --build "$build" -j"${GEARDYN_FUZZ_JOBS:-$(nproc)}" --target "${targets[@]/%/_fuzz}"
 
 work="${GEARDYN_FUZZ_WORK_DIR:-}"

@@ -202,8 +202,12 @@ TEST(SimulateCommandTest, FailedRunKeepsItsFiles) {
 // A user's Ctrl-C: the real binary gets SIGINT one second into a run that cannot become steady
 // (steady tolerance 1e-14, many periods); it must finish its files, say so and exit with 130.
 TEST(SimulateCommandTest, InterruptWritesTheResultsSoFarAndExits130) {
+  // GEARDYN_COMMAND: the sanitized twin's binary, when this runs as "sanitized:..."
+  // (tests/CMakeLists).
+  const char* command_override = std::getenv("GEARDYN_COMMAND");
   const std::filesystem::path binary =
-      std::filesystem::path(GEARDYN_BINARY_DIR) / "apps" / "geardyn";
+      command_override != nullptr ? std::filesystem::path(command_override)
+                                  : std::filesystem::path(GEARDYN_BINARY_DIR) / "apps" / "geardyn";
   ASSERT_TRUE(std::filesystem::exists(binary)) << binary;
   if (std::system("timeout --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "no timeout(1)";
   const std::filesystem::path dir = OutDir("interrupted");

@@ -3,80 +3,40 @@
 /// §3.9 item 7): `geardyn::test::CountAllocations(fn)` and the RAII `AllocationCounter`.
 ///
 /// Eigen's EIGEN_RUNTIME_NO_MALLOC only checks Eigen code compiled in the test's own translation
-/// unit, not the already-compiled library, so this header interposes the C allocator itself
-/// (glibc): every malloc/calloc/realloc/aligned allocation of the process — Eigen's
-/// aligned_malloc, operator new, std containers — is counted while a counter is active.
+/// unit, not the already-compiled library, so tests/support/allocation_counter.cpp interposes the
+/// C allocator itself (glibc): every malloc/calloc/realloc/aligned allocation of the process —
+/// Eigen's aligned_malloc, operator new, std containers — is counted while a counter is active.
+/// tests/CMakeLists.txt links it into every plain test executable.
 ///
-/// **Include this header in exactly ONE translation unit of a test executable** (it defines
-/// malloc & co.). Where interposition is unavailable (not glibc) GEARDYN_HAVE_ALLOCATION_COUNTER
-/// is 0 and the counts are always 0; guard the expectations with it (or GTEST_SKIP()).
-///
-/// Under AddressSanitizer (GEARDYN_SANITIZE) the counter is off too: ASan owns malloc, and a
-/// second malloc beside its interceptors made the 9 executables that include this header abort
-/// before main ("CHECK failed: asan_posix.cpp:124 tsd_key_inited": glibc's dlerror buffer, from
-/// __libc_malloc through this header, freed by ASan's free while ASan was starting).
+/// Where interposition is unavailable, `AllocationCounterAvailable()` is false and the counts are
+/// always 0; guard the expectations with it (GEARDYN_HAVE_ALLOCATION_COUNTER, or GTEST_SKIP()).
+/// That is so in the sanitized twins (GEARDYN_SANITIZED_TWINS) and under GEARDYN_SANITIZE: ASan
+/// owns malloc, and a second malloc beside its interceptors made the 9 executables that counted
+/// allocations abort before main ("CHECK failed: asan_posix.cpp:124 tsd_key_inited": glibc's
+/// dlerror buffer, from __libc_malloc through the interposer, freed by ASan's free while ASan was
+/// starting). The decision is made at link time, not in this header, because a test's objects are
+/// shared by its plain and its sanitized executable.
 #pragma once
 
-#include <cstddef>
 #include <utility>
 
-#if defined(__SANITIZE_ADDRESS__)  // GCC
-#define GEARDYN_TEST_UNDER_ASAN 1
-#elif defined(__has_feature)  // clang
-#if __has_feature(address_sanitizer)
-#define GEARDYN_TEST_UNDER_ASAN 1
-#endif
-#endif
+namespace geardyn::test {
 
-#if defined(__GLIBC__) && !defined(GEARDYN_TEST_UNDER_ASAN)
-extern "C" {
-void* __libc_malloc(size_t size);  // NOLINT(bugprone-reserved-identifier)
-void* __libc_calloc(size_t count, size_t size);
-void* __libc_realloc(void* ptr, size_t size);
-void* __libc_memalign(size_t alignment, size_t size);
-}
+/// True when this executable counts allocations (the plain build on glibc).
+bool AllocationCounterAvailable();
 
-namespace geardyn::test::internal {
-inline bool g_counting = false;
-inline long g_allocations = 0;
-inline void Count() {
-  if (g_counting) ++g_allocations;
-}
-}  // namespace geardyn::test::internal
+namespace internal {
+// Out of line (allocation_counter.cpp) on purpose: clang knows that malloc touches no program
+// memory, so inline stores to a counting flag around an allocation were dead-store eliminated and
+// the counter saw nothing (seen when the interposer moved out of this header).
+void StartCounting();
+long StopCounting();
+}  // namespace internal
 
-extern "C" {
-void* malloc(size_t size) noexcept {
-  geardyn::test::internal::Count();
-  return __libc_malloc(size);
-}
-void* calloc(size_t count, size_t size) noexcept {
-  geardyn::test::internal::Count();
-  return __libc_calloc(count, size);
-}
-void* realloc(void* ptr, size_t size) noexcept {
-  geardyn::test::internal::Count();
-  return __libc_realloc(ptr, size);
-}
-void* aligned_alloc(size_t alignment, size_t size) noexcept {
-  geardyn::test::internal::Count();
-  return __libc_memalign(alignment, size);
-}
-int posix_memalign(void** out, size_t alignment, size_t size) noexcept {
-  geardyn::test::internal::Count();
-  void* p = __libc_memalign(alignment, size);
-  if (p == nullptr) return 12;  // ENOMEM
-  *out = p;
-  return 0;
-}
-}
-#define GEARDYN_HAVE_ALLOCATION_COUNTER 1
-#else
-#define GEARDYN_HAVE_ALLOCATION_COUNTER 0
-namespace geardyn::test::internal {
-inline bool g_counting = false;
-inline long g_allocations = 0;
-}  // namespace geardyn::test::internal
-#endif
+}  // namespace geardyn::test
+
+/// A run-time value (was a preprocessor constant): use it in `if`, not in `#if`.
+#define GEARDYN_HAVE_ALLOCATION_COUNTER (::geardyn::test::AllocationCounterAvailable())
 
 namespace geardyn::test {
 
@@ -84,18 +44,12 @@ namespace geardyn::test {
 /// re-entrant (one active counter at a time), not thread-safe.
 class AllocationCounter {
  public:
-  AllocationCounter() {
-    internal::g_allocations = 0;
-    internal::g_counting = true;
-  }
-  ~AllocationCounter() { internal::g_counting = false; }
+  AllocationCounter() { internal::StartCounting(); }
+  ~AllocationCounter() { internal::StopCounting(); }
   AllocationCounter(const AllocationCounter&) = delete;
   AllocationCounter& operator=(const AllocationCounter&) = delete;
   /// Allocations so far (stops counting).
-  long Stop() {
-    internal::g_counting = false;
-    return internal::g_allocations;
-  }
+  long Stop() { return internal::StopCounting(); }
 };
 
 /// @brief Number of heap allocations made while running fn() (0 without interposition).

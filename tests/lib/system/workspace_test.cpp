@@ -140,9 +140,7 @@ TEST(WorkspaceTest, SliceCoreAssemblesItsAllLoadedLimit) {
 }
 
 TEST(WorkspaceTest, KernelsDoNotAllocate) {
-#if !GEARDYN_HAVE_ALLOCATION_COUNTER
-  GTEST_SKIP() << "no allocation counter on this platform";
-#endif
+  if (!GEARDYN_HAVE_ALLOCATION_COUNTER) GTEST_SKIP() << "no allocation counter in this build";
   const HandPairParams p;
   const SystemModel model = HandPairBuilder(p, VaryingCore(p, 500.0)).Build();
   SystemWorkspace dense(model, StorageKind::kDense);

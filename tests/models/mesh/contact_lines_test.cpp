@@ -502,7 +502,7 @@ TEST(ContactLinesTest, InvalidInputThrowsNamingTheField) {
 }
 
 TEST(ContactLinesTest, CalcChannelsDoesNotAllocate) {
-#if GEARDYN_HAVE_ALLOCATION_COUNTER
+  if (!GEARDYN_HAVE_ALLOCATION_COUNTER) GTEST_SKIP() << "no allocation counter in this build";
   const double g = 1.55 * kPitch;
   const ContactLineModel model(
       Zone(1.55, 1.3), StiffnessProfile::PiecewiseLinear({0.0, 0.5 * g, g}, {kK, 2 * kK, kK}));
@@ -516,9 +516,6 @@ TEST(ContactLinesTest, CalcChannelsDoesNotAllocate) {
   });
   EXPECT_EQ(allocations, 0);
   EXPECT_TRUE(std::isfinite(sink));
-#else
-  GTEST_SKIP() << "allocation counter needs glibc";
-#endif
 }
 
 }  // namespace
