@@ -6,12 +6,18 @@
 
 #include "support/no_malloc.hpp"
 
+// Interposition needs glibc's __libc_* entry points, and is off under AddressSanitizer.
 #if defined(__SANITIZE_ADDRESS__)  // GCC
-#define GEARDYN_TEST_UNDER_ASAN 1
+#define GEARDYN_TEST_INTERPOSE_MALLOC 0
 #elif defined(__has_feature)  // clang
 #if __has_feature(address_sanitizer)
-#define GEARDYN_TEST_UNDER_ASAN 1
+#define GEARDYN_TEST_INTERPOSE_MALLOC 0
 #endif
+#endif
+#if !defined(GEARDYN_TEST_INTERPOSE_MALLOC) && defined(__GLIBC__)
+#define GEARDYN_TEST_INTERPOSE_MALLOC 1
+#elif !defined(GEARDYN_TEST_INTERPOSE_MALLOC)
+#define GEARDYN_TEST_INTERPOSE_MALLOC 0
 #endif
 
 namespace geardyn::test {
@@ -20,6 +26,10 @@ namespace {
 bool g_counting = false;
 long g_allocations = 0;
 }  // namespace
+// Called by the interposed allocator below.
+void Count() {
+  if (g_counting) ++g_allocations;
+}
 void StartCounting() {
   g_allocations = 0;
   g_counting = true;
@@ -28,20 +38,13 @@ long StopCounting() {
   g_counting = false;
   return g_allocations;
 }
-void Count() {
-  if (g_counting) ++g_allocations;
-}
 }  // namespace internal
 
-#if defined(__GLIBC__) && !defined(GEARDYN_TEST_UNDER_ASAN)
-bool AllocationCounterAvailable() { return true; }
-#else
-bool AllocationCounterAvailable() { return false; }
-#endif
+bool AllocationCounterAvailable() { return GEARDYN_TEST_INTERPOSE_MALLOC == 1; }
 
 }  // namespace geardyn::test
 
-#if defined(__GLIBC__) && !defined(GEARDYN_TEST_UNDER_ASAN)
+#if GEARDYN_TEST_INTERPOSE_MALLOC
 extern "C" {
 void* __libc_malloc(size_t size);  // NOLINT(bugprone-reserved-identifier)
 void* __libc_calloc(size_t count, size_t size);
