@@ -307,11 +307,11 @@ std::string FormatElementForceCsv(const SystemModel& model, const TimeResponse& 
 
 std::string FormatEnergyCsv(const TimeResponse& r) {
   std::ostringstream out;
-  out << "period,input_work_j,stored_change_j,dissipated_j,relative_error\n";
+  out << "period,input_work_j,stored_change_j,dissipated_j,gross_flow_j,relative_error\n";
   for (std::size_t k = 0; k < r.energy.size(); ++k) {
     const EnergyBalancePeriod& e = r.energy[k];
     out << k << "," << Num(e.input_work) << "," << Num(e.stored_change) << "," << Num(e.dissipated)
-        << "," << Num(e.relative_error) << "\n";
+        << "," << Num(e.gross_flow) << "," << Num(e.relative_error) << "\n";
   }
   return out.str();
 }

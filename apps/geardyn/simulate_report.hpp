@@ -102,7 +102,7 @@ std::string FormatChannelHistoryCsv(const TimeResponse& response, int decimation
 std::string FormatElementForceCsv(const SystemModel& model, const TimeResponse& response);
 
 /// @brief The energy balance per integrated period: period, input_work_j, stored_change_j,
-/// dissipated_j, relative_error.
+/// dissipated_j, gross_flow_j, relative_error.
 std::string FormatEnergyCsv(const TimeResponse& response);
 
 /// @brief SVG: RMS DTE [µm] of the first mesh vs mesh frequency, one panel per torque; the up

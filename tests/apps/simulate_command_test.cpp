@@ -196,7 +196,7 @@ TEST(SimulateCommandTest, FailedRunKeepsItsFiles) {
   EXPECT_EQ(dte[0], "time_s,theta_rad,pinion-wheel:dte_m,pinion-wheel:force_n");
   const std::vector<std::string> energy = ReadLines(dir / "simulate_energy.csv");
   ASSERT_GE(energy.size(), 2u);  // header + every integrated period
-  EXPECT_EQ(energy[0], "period,input_work_j,stored_change_j,dissipated_j,relative_error");
+  EXPECT_EQ(energy[0], "period,input_work_j,stored_change_j,dissipated_j,gross_flow_j,relative_error");
 }
 
 // A user's Ctrl-C: the real binary gets SIGINT one second into a run that cannot become steady

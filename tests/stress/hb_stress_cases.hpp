@@ -163,7 +163,7 @@ inline ::testing::AssertionResult AllFinite(const TimeResponse& r) {
     if (!f.allFinite()) return bad("element forces");
   }
   for (const EnergyBalancePeriod& e : r.energy) {
-    for (double v : {e.input_work, e.stored_change, e.dissipated, e.relative_error}) {
+    for (double v : {e.input_work, e.stored_change, e.dissipated, e.gross_flow, e.relative_error}) {
       if (!std::isfinite(v)) return bad("energy balance");
     }
   }

@@ -49,10 +49,11 @@ TEST_P(TimeDomainSpeedStress, SteadyStateEqualsTheClosedForm) {
   EXPECT_LT(r.max_energy_error, 1e-4) << c.name;
 }
 
-// f_m/f_n = 2e-7: quasi-static, |X| = F/k. STILL DISABLED (docs/stress/part-b.md): status,
-// RMS, mean and steps now right, but with ρ∞ = 0 the energy balance is off by 6.9e-2 (> 1e-4):
-// the trapezoid quadrature in alpha_stepper.cpp (no more NaN) is not the integrator's own.
-INSTANTIATE_TEST_SUITE_P(DISABLED_QuasiStatic, TimeDomainSpeedStress,
+// f_m/f_n = 2e-7: quasi-static, |X| = F/k. Fixed in issue 16 (docs/stress/part-b.md): the
+// energy balance read 6.9e-2 although the response was right. W ≈ D ≈ 3.4e-8 of the gross flow G
+// per period there, and the quadrature's error of ≈ 2e-9·G was measured against D alone; the
+// scale now has a floor of 1e-3·G (time_response.hpp, "Energy balance"): 2.3e-6.
+INSTANTIATE_TEST_SUITE_P(QuasiStatic, TimeDomainSpeedStress,
                          ::testing::Values(SpeedCase{"quasi_static_1e_3_Hz", 1e-3, 1e-4}),
                          [](const ::testing::TestParamInfo<SpeedCase>& param_info) {
                            return param_info.param.name;
@@ -118,6 +119,48 @@ TEST(TimeDomainStress, ZeroDampingConservesEnergyAndEndsWithAStatus) {
     // W = ΔS to the integration error (rk8pd at 1e-11).
     EXPECT_LT(e.relative_error, 1e-7);
   }
+}
+
+// The energy error's floor of 1e-3 of the gross flow (issue 16: the quasi-static case above)
+// leaves the check's sense in a dynamic run: generalized-α at loose tolerances with numerical
+// damping (ρ∞ = 0.5: energy the integrator removes and D does not book) on the pair with a 20 %
+// mesh-stiffness variation under load, below resonance. G ≈ 47 D there, so the floor is inactive
+// and the error is the numerical loss against D (3.3e-3; the RMS DTE is 0.55 % off rk8pd's).
+// Truth: rk8pd at 1e-11, whose balance closes to ≲ 1e-9.
+TEST(TimeDomainStress, EnergyCheckStillSeesALooseIntegrationUnderLoad) {
+  SdofPair pair;
+  pair.shape = stress::StiffnessShape::kCosine;
+  pair.a = 0.2;
+  pair.harmonic_torque = 20.0;
+  const double f_m = 0.8 * pair.NaturalHz();
+  TimeResponseOptions tight;
+  tight.integration.integrator = TimeIntegrator::kRungeKutta;
+  tight.integration.relative_tolerance = 1e-11;
+  tight.integration.absolute_tolerance = 1e-11;
+  const TimeResponse ref = SimulateSteadyState(pair.Model(), f_m, tight);
+  ASSERT_TRUE(ref.summary.ok()) << ref.summary.BriefReport();
+  EXPECT_LT(ref.max_energy_error, 1e-8);
+  TimeResponseOptions loose;
+  loose.integration.integrator = TimeIntegrator::kGeneralizedAlpha;
+  loose.integration.spectral_radius = 0.5;
+  loose.integration.relative_tolerance = 1e-2;
+  loose.integration.absolute_tolerance = 1e-2;
+  const TimeResponse r = SimulateSteadyState(pair.Model(), f_m, loose);
+  ASSERT_TRUE(r.summary.ok()) << r.summary.BriefReport();
+  ASSERT_FALSE(r.energy.empty());
+  for (const EnergyBalancePeriod& e : r.energy) {
+    EXPECT_GT(e.dissipated, 1e-3 * e.gross_flow);  // the floor is inactive
+    EXPECT_GT(e.gross_flow, e.dissipated);         // G counts the parametric exchange too
+  }
+  EXPECT_GT(r.max_energy_error, 1e-4);
+  const double rms_error =
+      std::abs(r.meshes[0].rms_dte - ref.meshes[0].rms_dte) / ref.meshes[0].rms_dte;
+  EXPECT_GT(rms_error, 1e-3);  // the warning is about a real error
+  bool warned = false;
+  for (const std::string& w : r.summary.warnings) {
+    warned = warned || w.find("tighten the tolerances") != std::string::npos;
+  }
+  EXPECT_TRUE(warned) << r.summary.BriefReport();
 }
 
 // A step budget far too small for the request: the run ends with kNotConverged and a message

@@ -119,6 +119,7 @@ bool TdStepper::AdvanceTo(double t1) {
     Commit();
     phase_work_ += trial_work_;
     dissipated_ += trial_dissipated_;
+    gross_flow_ += std::abs(trial_work_) + std::abs(trial_dissipated_);
     t_ += trial_h_;
     switching_ = trial_switching_;
     live_ = trial_live_;
@@ -141,6 +142,7 @@ void TdStepper::CrossBreak(double t_after) {
   t_ = t_after;
   Eval(t_, x_, v_, false);
   phase_work_ += ws_.mesh_energy - before;
+  gross_flow_ += std::abs(ws_.mesh_energy - before);
   switching_ = ws_.switching;
   live_ = ws_.switching_live;
   ++breaks_;

@@ -23,7 +23,9 @@ struct TdScales {
 /// @brief One integration method with adaptive steps and event location (see the @file).
 ///
 /// Time t is local to a run; θ = theta0 + omega·t. AdvanceTo(t1) ends exactly at t1. The
-/// accumulators phase_work (∫ΣP dt) and dissipated (∫(vᵀC0v + ΣD) dt) run from the last
+/// accumulators phase_work (∫ΣP dt), dissipated (∫(vᵀC0v + ΣD) dt) and gross_flow (Σ over the
+/// steps of |phase-work increment| + dissipation increment, plus |energy jump| at each break: the
+/// energy the steps moved, the scale of their quadrature error) run from the last
 /// ResetQuadrature().
 class TdStepper {
  public:
@@ -35,13 +37,14 @@ class TdStepper {
   void Reset(double t, const VectorX& x, const VectorX& v);
   /// Integrates to t1 ≥ t. False on failure (message()).
   bool AdvanceTo(double t1);
-  void ResetQuadrature() { phase_work_ = dissipated_ = 0.0; }
+  void ResetQuadrature() { phase_work_ = dissipated_ = gross_flow_ = 0.0; }
 
   double t() const { return t_; }
   const VectorX& x() const { return x_; }
   const VectorX& v() const { return v_; }
   double phase_work() const { return phase_work_; }
   double dissipated() const { return dissipated_; }
+  double gross_flow() const { return gross_flow_; }
   long steps() const { return steps_; }
   long rejected() const { return rejected_; }
   long events() const { return events_; }
@@ -89,7 +92,7 @@ class TdStepper {
   double trial_work_ = 0.0, trial_dissipated_ = 0.0;  // quadrature increments of the trial
   VectorX switching_, trial_switching_;               // at the committed / trial state
   std::vector<char> live_, trial_live_;
-  double phase_work_ = 0.0, dissipated_ = 0.0;
+  double phase_work_ = 0.0, dissipated_ = 0.0, gross_flow_ = 0.0;
   double h_ = 0.0, max_step_ = 0.0;
   long steps_ = 0, rejected_ = 0, events_ = 0, evaluations_ = 0, breaks_ = 0;
   double last_event_time_ = std::numeric_limits<double>::quiet_NaN();

@@ -33,6 +33,10 @@ using internal::TdScales;
 using internal::TdSystem;
 using internal::TdWorkspace;
 
+/// Fraction of a period's gross energy flow G below which the energy balance does not resolve
+/// the net flows (time_response.hpp, "Energy balance") [-].
+constexpr double kGrossFlowFloor = 1e-3;
+
 /// Growth of a mesh's max |DTE| over its first period beyond which a run is unbounded [-].
 constexpr double kGrowthLimit = 1e4;
 
@@ -420,8 +424,12 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
     e.stored_change = internal::StoredEnergy(sys, ws, stepper->x(), stepper->v()) - s_begin;
     e.input_work = sys.load0.dot(stepper->x() - x_begin) + stepper->phase_work();
     e.dissipated = stepper->dissipated();
-    const double scale = std::max({std::abs(e.input_work), std::abs(e.stored_change),
-                                   std::abs(e.dissipated), 1e-9 * std::abs(s_begin)});
+    e.gross_flow = stepper->gross_flow();
+    // Against the net flows, with a floor of 1e-3 of the energy moved (time_response.hpp,
+    // "Energy balance"): the quadrature's resolution, reached only at quasi-static speeds.
+    const double scale =
+        std::max({std::abs(e.input_work), std::abs(e.stored_change), std::abs(e.dissipated),
+                  kGrossFlowFloor * e.gross_flow, 1e-9 * std::abs(s_begin)});
     e.relative_error =
         scale > 0.0 ? std::abs(e.input_work - e.stored_change - e.dissipated) / scale : 0.0;
     out.energy.push_back(e);
