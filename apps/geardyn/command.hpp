@@ -56,5 +56,6 @@ Command AddFloquetCommand(CLI::App& app);
 Command AddStabilityChartCommand(CLI::App& app);
 Command AddSimulateCommand(CLI::App& app);
 Command AddCompareCommand(CLI::App& app);
+Command AddMatricesCommand(CLI::App& app);
 
 }  // namespace geardyn::app

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "geardyn/analyses/floquet.hpp"
+#include "geardyn/analysis_runs.hpp"
 #include "geardyn/cli.hpp"
 #include "geardyn/command.hpp"
 #include "geardyn/common/check.hpp"
@@ -21,9 +22,7 @@ namespace {
 
 struct FloquetCommandOptions {
   SceneCommandOptions scene;
-  std::string method = "auto";
-  double tolerance = 1e-10;
-  int nev = 6;
+  FloquetSettings settings;
 };
 
 nlohmann::json MakeFloquetReport(const Scene& scene, const std::string& requested,
@@ -129,13 +128,30 @@ std::string MultipliersCsv(const FloquetResult& r) {
 }
 
 int RunFloquet(const FloquetCommandOptions& opts, std::ostream& out) {
-  FloquetOptions options;
-  options.method = ParseFloquetMethod(opts.method, "--method");
-  options.tolerance = opts.tolerance;
-  options.arpack_nev = opts.nev;
-  // --nev is checked here, naming the flag: FloquetOptions names its own field (arpack_nev).
-  GEARDYN_THROW_UNLESS(opts.nev >= 1, "--nev: must be >= 1, got " << opts.nev);
+  // --nev is checked before the scene is read, naming the flag.
+  GEARDYN_THROW_UNLESS(opts.settings.nev >= 1, "--nev: must be >= 1, got " << opts.settings.nev);
   const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
+  const FloquetRun run = RunFloquetAnalysis(scene, opts.settings, opts.scene.out_dir);
+  out << (opts.scene.json ? run.report.dump(2) + "\n" : run.text);
+  if (!opts.scene.out_dir.empty() && !opts.scene.json) {
+    out << "written to " << opts.scene.out_dir << "\n";
+  }
+  return run.exit_code;
+}
+
+}  // namespace
+
+FloquetRun RunFloquetAnalysis(const Scene& scene, const FloquetSettings& settings,
+                              const std::string& out_dir) {
+  FloquetOptions options;
+  options.method = ParseFloquetMethod(settings.method, "--method");
+  GEARDYN_THROW_UNLESS(std::isfinite(settings.tolerance) && settings.tolerance > 0.0 &&
+                           settings.tolerance < 1.0,
+                       "--tolerance: must be a finite number in (0, 1), got " << settings.tolerance);
+  options.tolerance = settings.tolerance;
+  options.arpack_nev = settings.nev;
+  // --nev is checked here, naming the flag: FloquetOptions names its own field (arpack_nev).
+  GEARDYN_THROW_UNLESS(settings.nev >= 1, "--nev: must be >= 1, got " << settings.nev);
   if (scene.meshes.empty() && !scene.oscillator) {
     throw InvalidInput(scene.source + ": the scene has no mesh");
   }
@@ -152,27 +168,27 @@ int RunFloquet(const FloquetCommandOptions& opts, std::ostream& out) {
                        ": the mesh frequency is 0 (operating_point.speed_rpm must be > 0)");
   }
   GEARDYN_THROW_UNLESS(
-      options.method != FloquetMethod::kArpackMonodromy || opts.nev <= 2 * built.model.num_dofs(),
+      options.method != FloquetMethod::kArpackMonodromy || settings.nev <= 2 * built.model.num_dofs(),
       "--nev: must be <= 2n = " << 2 * built.model.num_dofs() << " (the multipliers of the "
-                                << built.model.num_dofs() << "-DOF system), got " << opts.nev);
-  const FloquetResult result = ComputeFloquet(built.model, options);
-  const nlohmann::json report = MakeFloquetReport(scene, opts.method, options.mesh_frequency_hz,
-                                                  built.model.num_dofs(), result, built.warnings);
-  const std::string json_text = report.dump(2) + "\n";
-  out << (opts.scene.json ? json_text : FormatFloquetText(report));
-  const std::string& dir = opts.scene.out_dir;
-  if (!dir.empty()) {
-    WriteOutputFile(dir, "floquet.json", json_text);
-    WriteOutputFile(dir, "multipliers.csv", MultipliersCsv(result));
-    if (!opts.scene.json) out << "written to " << dir << "\n";
+                                << built.model.num_dofs() << "-DOF system), got " << settings.nev);
+  FloquetRun run;
+  run.mesh_frequency_hz = options.mesh_frequency_hz;
+  run.result = ComputeFloquet(built.model, options);
+  const FloquetResult& result = run.result;
+  run.report = MakeFloquetReport(scene, settings.method, options.mesh_frequency_hz,
+                                 built.model.num_dofs(), result, built.warnings);
+  run.text = FormatFloquetText(run.report);
+  if (!out_dir.empty()) {
+    WriteOutputFile(out_dir, "floquet.json", run.report.dump(2) + "\n");
+    WriteOutputFile(out_dir, "multipliers.csv", MultipliersCsv(result));
   }
   // Exit 1 on any status but success and on an undetermined verdict (scripts test the code).
-  return result.summary.ok() && result.verdict != FloquetVerdict::kUndetermined
-             ? int{kExitOk}
-             : int{kExitNumericalIssue};
+  run.exit_code = result.summary.ok() && result.verdict != FloquetVerdict::kUndetermined
+                      ? int{kExitOk}
+                      : int{kExitNumericalIssue};
+  return run;
 }
 
-}  // namespace
 
 Command AddFloquetCommand(CLI::App& app) {
   auto opts = std::make_shared<FloquetCommandOptions>();
@@ -183,16 +199,16 @@ Command AddFloquetCommand(CLI::App& app) {
   std::vector<std::string> names;
   for (FloquetMethod m : kFloquetMethods) names.push_back(ToString(m));
   cmd->add_option(
-         "--method", opts->method,
+         "--method", opts->settings.method,
          "auto, exact_steps, magnus, ode_stepper, hill, modal_projection or arpack_monodromy "
          "(default auto: exact_steps for piecewise-constant stiffness, else magnus on the full "
          "system or modal_projection on the mesh-driven modes, whichever costs less; the "
          "projection is kept only when its max|λ| estimate cannot change the verdict)")
       ->check(CLI::IsMember(names));
-  cmd->add_option("--tolerance", opts->tolerance,
+  cmd->add_option("--tolerance", opts->settings.tolerance,
                   "error target on the multipliers (default 1e-10; not used by exact_steps)")
       ->check(FiniteNumberIn(0.0, 1.0, true, true));  // FloquetOptions::tolerance's bound
-  cmd->add_option("--nev", opts->nev,
+  cmd->add_option("--nev", opts->settings.nev,
                   "arpack_monodromy: number of largest-|λ| multipliers (default 6, <= 2n)");
   return {cmd, [opts](std::ostream& out) { return RunFloquet(*opts, out); }};
 }

@@ -25,6 +25,7 @@
 #include "geardyn/analyses/harmonic_balance.hpp"
 #include "geardyn/analyses/hb_stability.hpp"
 #include "geardyn/analyses/system_nonlinear_hb.hpp"
+#include "geardyn/analysis_runs.hpp"
 #include "geardyn/cli.hpp"
 #include "geardyn/command.hpp"
 #include "geardyn/common/check.hpp"
@@ -50,11 +51,7 @@ constexpr double kProgressInterval = 0.5;
 
 struct HbCommandOptions {
   SceneCommandOptions scene;
-  HbSettings settings;
-  bool nonlinear = false;               // --nonlinear
-  std::string stability = "monodromy";  // --stability
-  int monodromy_steps = 0;              // --monodromy-steps (0: automatic)
-  int branch_search = SystemNhbOptions{}.continuation.branch_search;  // --branch-search (0: off)
+  HbRunSettings run;
   CLI::Option* tolerance_option = nullptr;
   CLI::Option* harmonics_option = nullptr;
 };
@@ -72,25 +69,26 @@ NhbStabilityMethod StabilityMethod(const std::string& name) {
   return NhbStabilityMethod::kMonodromy;
 }
 
-// Writes the report of either mode to `out` and the three files to --out.
-void Emit(const HbCommandOptions& opts, const std::string& json_text, const std::string& text,
-          const std::vector<std::pair<std::string, std::string>>& files, std::ostream& out) {
-  out << (opts.scene.json ? json_text : text);
-  const std::string& dir = opts.scene.out_dir;
-  if (dir.empty()) return;
-  for (const auto& [name, content] : files) WriteOutputFile(dir, name, content);
-  if (!opts.scene.json) out << "written to " << dir << "\n";
+// The run's report and text; the files written to `out_dir` unless it is empty.
+void Finish(HbRun* run, nlohmann::json report, std::string text, const std::string& out_dir,
+            const std::vector<std::pair<std::string, std::string>>& files) {
+  for (const auto& [name, content] : files) {
+    if (!out_dir.empty()) WriteOutputFile(out_dir, name, content);
+  }
+  run->report = std::move(report);
+  run->text = std::move(text);
 }
 
-int RunNonlinearHb(const HbCommandOptions& opts, const Scene& scene, const SceneSystem& built,
-                   const std::vector<double>& frequencies, std::ostream& out, std::ostream& err) {
+HbRun RunNonlinearHb(const HbRunSettings& opts, const Scene& scene, const SceneSystem& built,
+                      const std::vector<double>& frequencies, const std::string& out_dir,
+                      const ProgressLine& err) {
   const HbSettings& settings = opts.settings;
   GEARDYN_THROW_UNLESS(
       settings.harmonics >= 0,
       "--harmonics: must be >= 1 (or 0 for --tolerance), got " << settings.harmonics);
   GEARDYN_THROW_UNLESS(std::isfinite(settings.tolerance) && settings.tolerance > 0.0,
                        "--tolerance: must be > 0, got " << settings.tolerance);
-  const bool by_tolerance = settings.harmonics == 0 && opts.tolerance_option->count() > 0;
+  const bool by_tolerance = settings.harmonics == 0 && opts.tolerance_given;
   SystemNhbOptions options;
   options.hb.harmonics =
       settings.harmonics > 0 ? settings.harmonics : (by_tolerance ? 0 : kNonlinearDefaultHarmonics);
@@ -149,7 +147,7 @@ int RunNonlinearHb(const HbCommandOptions& opts, const Scene& scene, const Scene
     auto last_line = std::chrono::steady_clock::now() - std::chrono::hours(1);
     int last_points = 0;
     double last_hz = 0.0;
-    if (settings.progress) {
+    if (settings.progress && err) {
       options.continuation.progress = [&](int points, double omega) {
         last_points = points;
         last_hz = omega / (2.0 * std::numbers::pi);
@@ -159,16 +157,16 @@ int RunNonlinearHb(const HbCommandOptions& opts, const Scene& scene, const Scene
         char line[96];
         std::snprintf(line, sizeof(line), "geardyn hb: %d points, f_m = %.1f Hz\n", points,
                       last_hz);
-        err << line;
+        err(line);
       };
     }
     options.continuation.cancel = CancelFlag();
     curve = TraceSystemNonlinearHb(built.model, options);
-    if (settings.progress) {
+    if (settings.progress && err) {
       char line[96];
       std::snprintf(line, sizeof(line), "geardyn hb: %d points, f_m = %.1f Hz (done)\n",
                     last_points, last_hz);
-      err << line;
+      err(line);
     }
   }
 
@@ -179,31 +177,38 @@ int RunNonlinearHb(const HbCommandOptions& opts, const Scene& scene, const Scene
   info.harmonics_requested = options.hb.harmonics;
   info.tolerance = settings.tolerance;
   info.stability = opts.stability;
-  const nlohmann::json report = MakeNhbReport(scene.source, info, curve, warnings);
-  const std::string json_text = report.dump(2) + "\n";
-  Emit(opts, json_text, FormatNhbText(report),
-       {{"nhb.json", json_text},
-        {"nhb.csv", FormatNhbCsv(curve, opts.stability != "none")},
-        {"nhb_rms_dte.svg",
-         RenderNhbPlot(curve, "RMS DTE (nonlinear harmonic balance): " + scene.source,
-                       opts.stability != "none")}},
-       out);
-  return curve.summary.ok() ? int{kExitOk} : int{kExitNumericalIssue};
+  nlohmann::json report = MakeNhbReport(scene.source, info, curve, warnings);
+  HbRun run;
+  run.nonlinear = true;
+  std::vector<std::pair<std::string, std::string>> files;
+  if (!out_dir.empty()) {
+    files = {{"nhb.json", report.dump(2) + "\n"},
+             {"nhb.csv", FormatNhbCsv(curve, opts.stability != "none")},
+             {"nhb_rms_dte.svg",
+              RenderNhbPlot(curve, "RMS DTE (nonlinear harmonic balance): " + scene.source,
+                            opts.stability != "none")}};
+  }
+  std::string text = FormatNhbText(report);
+  Finish(&run, std::move(report), std::move(text), out_dir, files);
+  run.exit_code = curve.summary.ok() ? int{kExitOk} : int{kExitNumericalIssue};
+  return run;
 }
 
-int RunLinearHb(const HbCommandOptions& opts, const Scene& scene, const SceneSystem& built,
-                const std::vector<double>& frequencies, std::ostream& out, std::ostream& err) {
-  GEARDYN_THROW_UNLESS(opts.settings.harmonics == 0 || opts.tolerance_option->count() == 0,
+HbRun RunLinearHb(const HbRunSettings& opts, const Scene& scene, const SceneSystem& built,
+                   const std::vector<double>& frequencies, const std::string& out_dir,
+                   const ProgressLine& err) {
+  GEARDYN_THROW_UNLESS(opts.settings.harmonics == 0 || !opts.tolerance_given,
                        "--tolerance: chooses H (H = 8, 16, ... until the RMS DTE changes by at "
                        "most the tolerance) and is not used with a fixed --harmonics "
                            << opts.settings.harmonics << "; give one of them");
   HbOptions options = MakeHbOptions(opts.settings);
   options.cancel = CancelFlag();
   HbProgress progress;
-  if (opts.settings.progress) {
+  if (opts.settings.progress && err) {
     progress = [&err](int done, int total) {
       if (done == total || done % std::max(1, total / 20) == 0) {
-        err << "geardyn hb: " << done << "/" << total << " mesh frequencies\n";
+        err("geardyn hb: " + std::to_string(done) + "/" + std::to_string(total) +
+            " mesh frequencies\n");
       }
     };
   }
@@ -215,33 +220,63 @@ int RunLinearHb(const HbCommandOptions& opts, const Scene& scene, const SceneSys
     FloquetOptions floquet;
     floquet.method = opts.stability == "hill" ? FloquetMethod::kHill : FloquetMethod::kAuto;
     floquet.tolerance = kLinearStabilityTolerance;
-    if (opts.settings.progress) err << "geardyn hb: Floquet verdicts of the points\n";
+    if (opts.settings.progress && err) err("geardyn hb: Floquet verdicts of the points\n");
     stability =
         std::make_unique<HbStabilitySweep>(ComputeHbStability(built.model, frequencies, floquet));
   }
-  const nlohmann::json report =
+  nlohmann::json report =
       MakeHbReport(scene.source, opts.settings, sweep, built.warnings, stability.get());
-  const std::string json_text = report.dump(2) + "\n";
-  Emit(opts, json_text, FormatHbText(report),
-       {{"hb.json", json_text},
-        {"hb.csv", FormatHbCsv(sweep, stability.get())},
-        {"hb_rms_dte.svg", RenderHbPlot(sweep, "RMS DTE (linear harmonic balance): " + scene.source,
-                                        stability.get())}},
-       out);
+  std::vector<std::pair<std::string, std::string>> files;
+  if (!out_dir.empty()) {
+    files = {{"hb.json", report.dump(2) + "\n"},
+             {"hb.csv", FormatHbCsv(sweep, stability.get())},
+             {"hb_rms_dte.svg",
+              RenderHbPlot(sweep, "RMS DTE (linear harmonic balance): " + scene.source,
+                           stability.get())}};
+  }
+  HbRun run;
+  std::string text = FormatHbText(report);
+  Finish(&run, std::move(report), std::move(text), out_dir, files);
   // An unstable point is a result, not a numerical problem; an undetermined verdict is.
   const bool stability_ok = stability == nullptr || stability->summary.ok();
-  return sweep.summary.ok() && stability_ok ? int{kExitOk} : int{kExitNumericalIssue};
+  run.exit_code = sweep.summary.ok() && stability_ok ? int{kExitOk} : int{kExitNumericalIssue};
+  return run;
 }
 
-int RunHb(const HbCommandOptions& opts, std::ostream& out, std::ostream& err) {
+int RunHb(HbCommandOptions& opts, std::ostream& out, std::ostream& err) {
+  opts.run.harmonics_given = opts.harmonics_option->count() > 0;
+  opts.run.tolerance_given = opts.tolerance_option->count() > 0;
+  const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
+  const HbRun run = RunHbAnalysis(scene, opts.run, opts.scene.out_dir,
+                                  [&err](const std::string& line) { err << line; });
+  out << (opts.scene.json ? run.report.dump(2) + "\n" : run.text);
+  if (!opts.scene.out_dir.empty() && !opts.scene.json) {
+    out << "written to " << opts.scene.out_dir << "\n";
+  }
+  return run.exit_code;
+}
+
+}  // namespace
+
+HbRun RunHbAnalysis(const Scene& scene, const HbRunSettings& opts, const std::string& out_dir,
+                    const ProgressLine& progress) {
+  // The command line checks these with CLI11; the library API (Python) reaches here directly.
+  GEARDYN_THROW_UNLESS(
+      opts.stability == "none" || opts.stability == "monodromy" || opts.stability == "hill",
+      "--stability: must be none, monodromy or hill, got \"" << opts.stability << "\"");
+  GEARDYN_THROW_UNLESS(opts.monodromy_steps >= 0,
+                       "--monodromy-steps: must be >= 0, got " << opts.monodromy_steps);
+  GEARDYN_THROW_UNLESS(
+      opts.branch_search >= 0 && opts.branch_search <= NhbContinuationOptions::kMaxBranchSearch,
+      "--branch-search: must be in [0, " << NhbContinuationOptions::kMaxBranchSearch << "], got "
+                                         << opts.branch_search);
   // HbSettings::harmonics = 0 means "choose H" (from --tolerance, or the nonlinear default):
   // given on the command line, 0 used to fall silently to that default (issue 16).
-  GEARDYN_THROW_UNLESS(opts.harmonics_option->count() == 0 || opts.settings.harmonics >= 1,
+  GEARDYN_THROW_UNLESS(!opts.harmonics_given || opts.settings.harmonics >= 1,
                        "--harmonics: must be >= 1 (omit it to choose H from --tolerance), got "
                            << opts.settings.harmonics);
   GEARDYN_THROW_UNLESS(!(opts.nonlinear && opts.settings.linear),
                        "--nonlinear and --linear: give at most one of them");
-  const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
   const std::vector<double> frequencies =
       ParseMeshFrequencies(opts.settings.mesh_frequency, NominalMeshFrequency(scene));
   SceneSystemOptions system_options;
@@ -264,62 +299,61 @@ int RunHb(const HbCommandOptions& opts, std::ostream& out, std::ostream& err) {
                              << name << ".model=\"slices\"");
   }
   if (has_slices && !opts.settings.linear) {
-    return RunNonlinearHb(opts, scene, built, frequencies, out, err);
+    return RunNonlinearHb(opts, scene, built, frequencies, out_dir, progress);
   }
-  return RunLinearHb(opts, scene, built, frequencies, out, err);
+  return RunLinearHb(opts, scene, built, frequencies, out_dir, progress);
 }
 
-}  // namespace
 
 Command AddHbCommand(CLI::App& app) {
   auto opts = std::make_shared<HbCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
       "hb", "steady-state DTE, mesh and bearing forces over mesh frequency (harmonic balance)");
   AddSceneOptions(cmd, &opts->scene);
-  cmd->add_option("--mesh-frequency", opts->settings.mesh_frequency,
+  cmd->add_option("--mesh-frequency", opts->run.settings.mesh_frequency,
                   "tooth-mesh frequencies [Hz] as lo:hi:n or one value (default 0.2 to 2.5 "
                   "times the scene's, n = 200). Linear: n evenly spaced points. Nonlinear: the "
                   "continuation range; n is its resolution (each step advances at most 1/n of "
                   "the range: at least about n points, more near resonances and folds)");
   opts->harmonics_option =
-      cmd->add_option("--harmonics", opts->settings.harmonics,
+      cmd->add_option("--harmonics", opts->run.settings.harmonics,
                       "number of harmonics H of the mesh frequency (linear: each with the "
                       "sidebands of the tooth errors, at most 2048; default: from --tolerance; "
                       "nonlinear default: 24; nonlinear with tooth errors repeating every P mesh "
                       "cycles: harmonics of f_mesh/P, at least P)");
   opts->tolerance_option = cmd->add_option(
-      "--tolerance", opts->settings.tolerance,
+      "--tolerance", opts->run.settings.tolerance,
       "linear, without --harmonics: relative change of the RMS DTE from H/2 to H accepted "
       "(default 1e-4; an error with --harmonics); "
       "nonlinear, when given without --harmonics: H = 8, 16, ... until the RMS of the top "
       "quarter of the harmonics relative to the RMS is below it");
-  cmd->add_flag("--linear", opts->settings.linear,
+  cmd->add_flag("--linear", opts->run.settings.linear,
                 "linear model even with slice meshes (linearized with every slice loaded, no "
                 "contact loss); the only mode for scenes without slice meshes");
-  cmd->add_flag("--nonlinear", opts->nonlinear,
+  cmd->add_flag("--nonlinear", opts->run.nonlinear,
                 "nonlinear model with contact loss and back-flank contact (the default when a "
                 "mesh has model = \"slices\"; an error without one)");
-  cmd->add_option("--stability", opts->stability,
+  cmd->add_option("--stability", opts->run.stability,
                   "stability of every point. Nonlinear: monodromy (Floquet multipliers of the "
                   "linearization, default), hill (uncondensed problems only, else monodromy) or "
                   "none. Linear: the Floquet verdict of the homogeneous LTV system at each mesh "
                   "frequency (parametric instability), monodromy = the automatic Floquet method "
                   "(default), hill = Hill's method, none = skipped")
       ->check(CLI::IsMember({"none", "monodromy", "hill"}));
-  cmd->add_option("--monodromy-steps", opts->monodromy_steps,
+  cmd->add_option("--monodromy-steps", opts->run.monodromy_steps,
                   "nonlinear: Magnus steps of the monodromy per period (default max(64, 4H)); "
                   "no effect on spur slice meshes without tooth errors (constant or stepwise "
                   "stiffness), whose monodromy is the exact product over the contact switches "
                   "and stiffness steps; elsewhere |mu| near 1 is first-order in the step: raise "
                   "it (e.g. 256) when the stable/unstable flag flickers")
       ->check(FiniteNumberIn(0, std::numeric_limits<int>::max()));
-  cmd->add_option("--branch-search", opts->branch_search,
+  cmd->add_option("--branch-search", opts->run.branch_search,
                   "nonlinear: frequencies inside the range (default 8, 0: off, at most 1000) "
                   "where Newton starts from four scaled contact guesses; a solution off the "
                   "traced curve (a detached branch or an isola) is traced both ways and added as "
                   "a new segment (JSON 'segment', new branch numbers)")
       ->check(CLI::Range(0, NhbContinuationOptions::kMaxBranchSearch));
-  cmd->add_flag("--progress", opts->settings.progress, "print the progress on the error stream");
+  cmd->add_flag("--progress", opts->run.settings.progress, "print the progress on the error stream");
   Command command{cmd, nullptr};
   command.run_with_err = [opts](std::ostream& out, std::ostream& err) {
     return RunHb(*opts, out, err);

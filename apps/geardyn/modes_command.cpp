@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "geardyn/analyses/modal.hpp"
+#include "geardyn/analysis_runs.hpp"
 #include "geardyn/cli.hpp"
 #include "geardyn/command.hpp"
 #include "geardyn/models/scene/scene_reader.hpp"
@@ -23,6 +24,18 @@ struct ModesCommandOptions {
 
 int RunModes(const ModesCommandOptions& opts, std::ostream& out) {
   const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
+  const ModesRun run = RunModesAnalysis(scene, opts.settings, opts.scene.out_dir);
+  out << (opts.scene.json ? run.report.dump(2) + "\n" : run.text);
+  if (!opts.scene.out_dir.empty() && !opts.scene.json) {
+    out << "written to " << opts.scene.out_dir << "\n";
+  }
+  return run.exit_code;
+}
+
+}  // namespace
+
+ModesRun RunModesAnalysis(const Scene& scene, const ModesSettings& settings,
+                          const std::string& out_dir) {
   // Modes use the mean operator only: ε (a table over the hunting period with tooth errors)
   // is not built.
   SceneSystemOptions system_options;
@@ -30,30 +43,27 @@ int RunModes(const ModesCommandOptions& opts, std::ostream& out) {
   system_options.analysis = "modes";  // named if a mass is missing
   const SceneSystem built = BuildSceneSystem(scene, system_options);
   const int n = built.model.num_dofs();
-  const ModalOptions options = MakeModesOptions(opts.settings, n);
-  ModalResult result = ComputeModes(built.model, options);
+  const ModalOptions options = MakeModesOptions(settings, n);
+  ModesRun run;
+  run.result = ComputeModes(built.model, options);
+  ModalResult& result = run.result;
   // --modes N applies to the damped modes too: the dense state-space solve gives all of them
   // (geared-shafts --modes 8 --damped listed 108). Both lists are sorted by natural frequency
   // (rigid-body modes first), so the first N damped modes sit beside the N undamped ones.
-  const auto wanted = static_cast<std::size_t>(opts.settings.num_modes);
+  const auto wanted = static_cast<std::size_t>(settings.num_modes);
   if (result.damped_modes.size() > wanted) result.damped_modes.resize(wanted);
-  nlohmann::json report = MakeModesReport(scene.source, n, result, built.warnings);
-  GroupShaftStrain(scene, &report);
-  const std::string json_text = report.dump(2) + "\n";
-  out << (opts.scene.json ? json_text : FormatModesText(report));
-  const std::string& dir = opts.scene.out_dir;
-  if (!dir.empty()) {
-    WriteOutputFile(dir, "modes.json", json_text);
-    WriteOutputFile(dir, "modes.csv", ModalResultToCsv(result));
-    if (opts.settings.shapes) {
-      WriteOutputFile(dir, "mode_shapes.csv", FormatModeShapesCsv(result));
-    }
-    if (!opts.scene.json) out << "written to " << dir << "\n";
+  run.report = MakeModesReport(scene.source, n, result, built.warnings);
+  GroupShaftStrain(scene, &run.report);
+  run.text = FormatModesText(run.report);
+  if (!out_dir.empty()) {
+    WriteOutputFile(out_dir, "modes.json", run.report.dump(2) + "\n");
+    WriteOutputFile(out_dir, "modes.csv", ModalResultToCsv(result));
+    if (settings.shapes) WriteOutputFile(out_dir, "mode_shapes.csv", FormatModeShapesCsv(result));
   }
-  return result.summary.ok() ? int{kExitOk} : int{kExitNumericalIssue};
+  run.exit_code = result.summary.ok() ? int{kExitOk} : int{kExitNumericalIssue};
+  return run;
 }
 
-}  // namespace
 
 Command AddModesCommand(CLI::App& app) {
   auto opts = std::make_shared<ModesCommandOptions>();

@@ -4,14 +4,17 @@
 // stability_chart.csv, transition_curves.csv, stability_chart.json and stability_chart.svg to
 // --out, and progress lines to the error stream (unless --json or --quiet).
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "geardyn/analysis_runs.hpp"
 #include "geardyn/cli.hpp"
 #include "geardyn/command.hpp"
+#include "geardyn/common/check.hpp"
 #include "geardyn/common/errors.hpp"
 #include "geardyn/csv_cell.hpp"
 #include "geardyn/output_files.hpp"
@@ -23,13 +26,7 @@ namespace {
 
 struct ChartCommandOptions {
   SceneCommandOptions scene;
-  std::string x, y;
-  int threads = 0;
-  std::string method = "auto";
-  double tolerance = 1e-6;
-  double boundary_tolerance = 1e-3;
-  int max_order = 3;
-  bool difference = false;
+  ChartRunSettings settings;
   bool no_curves = false;
   bool quiet = false;
 };
@@ -206,9 +203,39 @@ std::string FormatChartText(const nlohmann::json& j) {
 }
 
 int RunChart(const ChartCommandOptions& opts, std::ostream& out, std::ostream& err) {
+  ChartRunSettings settings = opts.settings;
+  settings.curves = !opts.no_curves;
+  ProgressLine progress;
+  if (!opts.scene.json && !opts.quiet) progress = [&err](const std::string& line) { err << line; };
+  const ChartRun run = RunChartAnalysis(opts.scene.scene, {}, opts.scene.overrides, settings,
+                                        opts.scene.out_dir, progress);
+  out << (opts.scene.json ? run.report.dump(2) + "\n" : run.text);
+  if (!opts.scene.out_dir.empty() && !opts.scene.json) {
+    out << "written to " << opts.scene.out_dir << "\n";
+  }
+  return run.exit_code;
+}
+
+}  // namespace
+
+ChartRun RunChartAnalysis(const std::string& scene, const std::string& scene_text,
+                          const std::vector<std::string>& overrides,
+                          const ChartRunSettings& opts, const std::string& out_dir,
+                          const ProgressLine& progress) {
+  // The command line checks these with CLI11; the library API (Python) reaches here directly.
+  GEARDYN_THROW_UNLESS(opts.threads >= 0, "--threads: must be >= 0, got " << opts.threads);
+  GEARDYN_THROW_UNLESS(
+      std::isfinite(opts.tolerance) && opts.tolerance > 0.0 && opts.tolerance < 1.0,
+      "--tolerance: must be a finite number in (0, 1), got " << opts.tolerance);
+  GEARDYN_THROW_UNLESS(opts.boundary_tolerance >= 1e-15 && opts.boundary_tolerance <= 0.5,
+                       "--boundary-tolerance: must be in [1e-15, 0.5], got "
+                           << opts.boundary_tolerance);
+  GEARDYN_THROW_UNLESS(opts.max_order >= 1 && opts.max_order <= 50,
+                       "--max-order: must be in [1, 50], got " << opts.max_order);
   SceneChartSettings settings;
-  settings.scene = opts.scene.scene;
-  settings.overrides = opts.scene.overrides;
+  settings.scene = scene;
+  settings.scene_text = scene_text;
+  settings.overrides = overrides;
   settings.x = ParseChartAxis("--x", opts.x);
   settings.y = ParseChartAxis("--y", opts.y);
   settings.floquet.method = ParseFloquetMethod(opts.method, "--method");
@@ -217,35 +244,33 @@ int RunChart(const ChartCommandOptions& opts, std::ostream& out, std::ostream& e
   settings.chart.boundary_tolerance = opts.boundary_tolerance;
   settings.chart.max_resonance_order = opts.max_order;
   settings.chart.difference_combinations = opts.difference;
-  settings.chart.trace_curves = !opts.no_curves;
-  if (!opts.scene.json && !opts.quiet) {
+  settings.chart.trace_curves = opts.curves;
+  if (progress) {
     // One line per 10 % of each phase.
     auto last = std::make_shared<std::pair<std::string, long>>("", -1);
-    settings.chart.progress = [last, &err](const ChartProgress& p) {
+    settings.chart.progress = [last, progress](const ChartProgress& p) {
       const long decile = p.total > 0 ? 10 * p.done / p.total : 10;
       if (last->first == p.phase && decile <= last->second) return;
       *last = {p.phase, decile};
-      err << "stability-chart: " << p.phase << " " << 10 * decile << " % (" << p.done << "/"
-          << p.total << " evaluations)\n";
+      progress(std::string("stability-chart: ") + p.phase + " " + std::to_string(10 * decile) + " % (" +
+               std::to_string(p.done) + "/" + std::to_string(p.total) + " evaluations)\n");
     };
   }
-  const SceneChart run = ComputeSceneStabilityChart(settings);
-  const nlohmann::json report = MakeChartReport(settings, run);
-  const std::string json_text = report.dump(2) + "\n";
-  out << (opts.scene.json ? json_text : FormatChartText(report));
-  const std::string& dir = opts.scene.out_dir;
-  if (!dir.empty()) {
-    WriteOutputFile(dir, "stability_chart.json", json_text);
-    WriteOutputFile(dir, "stability_chart.csv", PointsCsv(run.chart));
-    WriteOutputFile(dir, "transition_curves.csv", CurvesCsv(run.chart));
-    WriteOutputFile(dir, "stability_chart.svg",
-                    ChartSvg(run, opts.scene.scene + " — stability chart (max|λ| > 1 shaded)"));
-    if (!opts.scene.json) out << "written to " << dir << "\n";
+  ChartRun out;
+  out.run = ComputeSceneStabilityChart(settings);
+  out.report = MakeChartReport(settings, out.run);
+  out.text = FormatChartText(out.report);
+  if (!out_dir.empty()) {
+    WriteOutputFile(out_dir, "stability_chart.json", out.report.dump(2) + "\n");
+    WriteOutputFile(out_dir, "stability_chart.csv", PointsCsv(out.run.chart));
+    WriteOutputFile(out_dir, "transition_curves.csv", CurvesCsv(out.run.chart));
+    WriteOutputFile(out_dir, "stability_chart.svg",
+                    ChartSvg(out.run, scene + " — stability chart (max|λ| > 1 shaded)"));
   }
-  return run.chart.summary.ok() ? int{kExitOk} : int{kExitNumericalIssue};
+  out.exit_code = out.run.chart.summary.ok() ? int{kExitOk} : int{kExitNumericalIssue};
+  return out;
 }
 
-}  // namespace
 
 Command AddStabilityChartCommand(CLI::App& app) {
   auto opts = std::make_shared<ChartCommandOptions>();
@@ -254,32 +279,32 @@ Command AddStabilityChartCommand(CLI::App& app) {
       "Floquet stability chart over two scene parameters: unstable regions labelled by their "
       "parametric resonance, transition curves (CSV, JSON, SVG)");
   AddSceneOptions(cmd, &opts->scene);
-  cmd->add_option("--x", opts->x,
+  cmd->add_option("--x", opts->settings.x,
                   "x axis PATH=LO:HI:N over any --set path, e.g. "
                   "operating_point.speed_rpm=500:6000:60")
       ->required();
-  cmd->add_option("--y", opts->y,
+  cmd->add_option("--y", opts->settings.y,
                   "y axis PATH=LO:HI:N, e.g. mesh.pinion-wheel.parameters.stiffness.1=0:1e8:20")
       ->required();
-  cmd->add_option("--threads", opts->threads, "threads (default 0 = all cores)")
+  cmd->add_option("--threads", opts->settings.threads, "threads (default 0 = all cores)")
       ->check(FiniteNumberIn(0, std::numeric_limits<int>::max()));  // clamped to the work, warned
   std::vector<std::string> methods;
   for (FloquetMethod m : kFloquetMethods) methods.push_back(ToString(m));
-  cmd->add_option("--method", opts->method,
+  cmd->add_option("--method", opts->settings.method,
                   "Floquet method: auto, exact_steps, magnus, ode_stepper, hill, "
                   "modal_projection or arpack_monodromy (default auto)")
       ->check(CLI::IsMember(methods));
-  cmd->add_option("--tolerance", opts->tolerance,
+  cmd->add_option("--tolerance", opts->settings.tolerance,
                   "Floquet error target of every point (default 1e-6; points whose verdict lies "
                   "within twice the estimate are recomputed at 1e-10)")
       ->check(FiniteNumberIn(0.0, 1.0, true, true));  // FloquetOptions::tolerance's bound
-  cmd->add_option("--boundary-tolerance", opts->boundary_tolerance,
+  cmd->add_option("--boundary-tolerance", opts->settings.boundary_tolerance,
                   "transition-curve bisection tolerance, a fraction of the axis span (default "
                   "1e-3: below a pixel of the SVG's 780-px frame)")
       ->check(CLI::Range(1e-15, 0.5));
-  cmd->add_option("--max-order", opts->max_order, "largest resonance order k of the labels (3)")
+  cmd->add_option("--max-order", opts->settings.max_order, "largest resonance order k of the labels (3)")
       ->check(CLI::Range(1, 50));
-  cmd->add_flag("--difference", opts->difference,
+  cmd->add_flag("--difference", opts->settings.difference,
                 "also label difference combinations (f_q - f_p)/k");
   cmd->add_flag("--no-curves", opts->no_curves, "skip the transition curves");
   cmd->add_flag("--quiet", opts->quiet, "no progress lines on the error stream");

@@ -72,7 +72,8 @@ class ChartContext {
   Built Build(const std::vector<std::string>& extra) const {
     std::vector<std::string> overrides = s_.overrides;
     overrides.insert(overrides.end(), extra.begin(), extra.end());
-    const Scene scene = LoadScene(s_.scene, overrides);
+    const Scene scene = s_.scene_text.empty() ? LoadScene(s_.scene, overrides)
+                                              : ParseScene(s_.scene_text, s_.scene, overrides);
     if (scene.meshes.empty() && !scene.oscillator) {
       throw InvalidInput(scene.source + ": the scene has no mesh (a stability chart needs one)");
     }

@@ -57,7 +57,10 @@ ChartAxisSpec ParseChartAxis(const std::string& option, const std::string& text)
 
 /// @brief Everything the chart needs besides the scene.
 struct SceneChartSettings {
-  std::string scene;                   ///< file or builtin:NAME
+  std::string scene;                   ///< file or builtin:NAME (the name errors use)
+  /// The scene's TOML text when it is not read from `scene` (the Python package's scenes from
+  /// a string or a dict); empty: LoadScene(scene).
+  std::string scene_text;
   std::vector<std::string> overrides;  ///< --set, applied before the axis values
   ChartAxisSpec x;
   ChartAxisSpec y;

@@ -1,0 +1,224 @@
+"""Result objects of the analyses.
+
+Every array is a numpy copy owned by the result (it stays valid after the result, or the
+geardyn objects it came from, are gone). Every result carries ``report`` (the dict of the
+``geardyn`` command's ``--json`` output for the same input), ``text`` (the command's text output),
+``summary`` and ``exit_code`` (the command's: 0 success, 1 a status other than success).
+Units are SI: Hz, m, rad, N, N·m, s.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+__all__ = ["Summary", "ModesResult", "FloquetResult", "HbResult", "StabilityChartResult",
+           "MeshTable", "MeshResult", "InfoResult", "SystemMatrices"]
+
+
+@dataclass(frozen=True)
+class Summary:
+    """Status of an analysis run (architecture §3.3): ``status`` is ``"success"``,
+    ``"not_converged"``, ``"numerical_issue"``, ``"tolerance_not_met"`` or ``"interrupted"``."""
+
+    status: str
+    message: str = ""
+    error_estimate: float = 0.0
+    wall_time_s: float = 0.0
+    counters: dict[str, int] = field(default_factory=dict)
+    warnings: list[str] = field(default_factory=list)
+
+    @property
+    def ok(self) -> bool:
+        return self.status == "success"
+
+    @classmethod
+    def _from_cpp(cls, s: Any) -> Summary:
+        return cls(s.status, s.message, s.error_estimate, s.wall_time_s, dict(s.counters),
+                   list(s.warnings))
+
+    @classmethod
+    def _from_report(cls, r: dict[str, Any]) -> Summary:
+        return cls(r.get("status", "success"), r.get("message", "") or "",
+                   float(r.get("error_estimate", 0.0) or 0.0),
+                   float(r.get("wall_time_s", 0.0) or 0.0), dict(r.get("counters", {}) or {}),
+                   list(r.get("warnings", []) or []))
+
+
+@dataclass(frozen=True)
+class _Run:
+    report: dict[str, Any]
+    text: str
+    summary: Summary
+    exit_code: int
+
+    @property
+    def ok(self) -> bool:
+        """True when the command would have exited with 0."""
+        return self.exit_code == 0
+
+    @property
+    def warnings(self) -> list[str]:
+        return list(self.report.get("warnings", []))
+
+
+@dataclass(frozen=True)
+class InfoResult:
+    """``geardyn info``: derived geometry, contact ratios, mesh stiffness (``report``)."""
+
+    report: dict[str, Any]
+    text: str
+
+
+@dataclass(frozen=True)
+class ModesResult(_Run):
+    """``geardyn modes``: modes of the mean (LTI) system.
+
+    Attributes:
+        frequencies_hz: (m,) natural frequencies, ascending [Hz]; 0 for rigid-body modes.
+        eigenvalues: (m,) ω² [rad²/s²].
+        shapes: (n, m) M-orthonormal mode shapes [m or rad per √kg]; (n, 0) without shapes=True.
+        dof_names: (n,) row names of ``shapes`` ("<body>.<component>"); empty without shapes.
+        labels: (m,) mode types ("rigid_body", "torsional", "translational", ...).
+        kinetic_fractions: (m, 4) kinetic energy per DOF kind.
+        strain_fractions: (m, s) strain energy per owner (columns ``strain_names``).
+        modal_damping_ratios: (m,) ζ_k, empty without damping.
+    """
+
+    frequencies_hz: np.ndarray
+    eigenvalues: np.ndarray
+    shapes: np.ndarray
+    dof_names: list[str]
+    labels: list[str]
+    kinetic_fractions: np.ndarray
+    body_kinetic_fractions: np.ndarray
+    body_names: list[str]
+    strain_fractions: np.ndarray
+    strain_names: list[str]
+    modal_damping_ratios: np.ndarray
+    num_rigid_body_modes: int
+
+
+@dataclass(frozen=True)
+class FloquetResult(_Run):
+    """``geardyn floquet``: Floquet multipliers at the operating point.
+
+    ``stable`` is True, False, or None when the verdict is undetermined (never read None as
+    unstable: see ``summary``).
+    """
+
+    multipliers: np.ndarray  # (k,) complex, by |λ|
+    exponents: np.ndarray  # (k,) complex μ = ln(λ)/T [1/s]
+    max_abs_multiplier: float
+    stability_margin: float
+    verdict: str  # "stable", "unstable" or "undetermined"
+    stable: bool | None
+    marginal: bool
+    mesh_frequency_hz: float
+    period_s: float
+    period_meshes: int
+    method_used: str
+
+
+@dataclass(frozen=True)
+class HbResult(_Run):
+    """``geardyn hb``: steady-state DTE over mesh frequency (linear sweep or nonlinear trace).
+
+    Attributes:
+        nonlinear: which model ran (contact loss with slice meshes, else linear).
+        mesh_frequency_hz: (p,) the points' mesh frequencies [Hz], in trace order (nonlinear:
+            along the branch, folds included).
+        rms_dte_m: mesh name → (p,) RMS dynamic transmission error [m].
+        peak_to_peak_dte_m: mesh name → (p,) [m].
+        rms_force_n: mesh name → (p,) RMS mesh force [N].
+        stable: (p,) 1.0 stable, 0.0 unstable, NaN undetermined or not computed.
+        branch: (p,) branch number (nonlinear; 0 for the linear sweep).
+        segment: (p,) traced segment (nonlinear; 0 for the linear sweep).
+        jumps: the nonlinear trace's jumps (report["jumps"]); empty for the linear sweep.
+    """
+
+    nonlinear: bool
+    mesh_frequency_hz: np.ndarray
+    rms_dte_m: dict[str, np.ndarray]
+    peak_to_peak_dte_m: dict[str, np.ndarray]
+    rms_force_n: dict[str, np.ndarray]
+    stable: np.ndarray
+    branch: np.ndarray
+    segment: np.ndarray
+    jumps: list[dict[str, Any]]
+
+
+@dataclass(frozen=True)
+class StabilityChartResult(_Run):
+    """``geardyn stability-chart``: max|λ| over two scene parameters.
+
+    Grid arrays are (ny, nx): row iy is ``y[iy]``, column ix is ``x[ix]``. ``stable`` is 1.0,
+    0.0, or NaN where the point is undetermined (``determined`` False: the CSV's ``ok``). ``region`` is the index into
+    ``regions`` (report["regions"], labelled by their parametric resonance), −1 if stable.
+    ``curves`` are the transition curves as (x, y, closed).
+    """
+
+    x_path: str
+    y_path: str
+    x: np.ndarray
+    y: np.ndarray
+    max_abs_multiplier: np.ndarray
+    error_estimate: np.ndarray
+    mesh_frequency_hz: np.ndarray
+    determined: np.ndarray
+    stable: np.ndarray
+    region: np.ndarray
+    regions: list[dict[str, Any]]
+    curves: list[tuple[np.ndarray, np.ndarray, bool]]
+
+
+@dataclass(frozen=True)
+class MeshTable:
+    """K(θ), h(θ), κ(θ), μ(θ), ε(θ) of one mesh over its period (columns of mesh_NAME.csv)."""
+
+    name: str
+    cycle: np.ndarray  # θ/2π [mesh cycles]
+    stiffness: np.ndarray  # K [N/m]
+    load_centre: np.ndarray  # h [m]
+    kappa: np.ndarray  # h/b [-]
+    mu: np.ndarray  # [-]
+    te_eta: np.ndarray  # ε_η [m] (empty without transmission error)
+    te_zeta: np.ndarray  # ε_ζ [rad] (empty without transmission error)
+
+
+@dataclass(frozen=True)
+class MeshResult:
+    """``geardyn mesh``: the sampled mesh parameters of every mesh."""
+
+    report: dict[str, Any]
+    meshes: dict[str, MeshTable]
+
+
+@dataclass(frozen=True)
+class SystemMatrices:
+    """The system matrices (``geardyn matrices``): M, C, K of the mean system that
+    ``geardyn modes`` solves (scipy.sparse CSC), the mean load f, and the Fourier harmonics
+    K_m, C_m, f_m (m = 0 … H, dense complex) with
+    K(θ) = K_0 + Σ_{m≥1} (K_m e^{imθ/P} + conj(K_m) e^{−imθ/P}), P = ``period_meshes``.
+
+    ``dofs`` lists per DOF its index, name, body, component, kind and unit (m or rad).
+    """
+
+    report: dict[str, Any]
+    mass: Any
+    damping: Any
+    stiffness: Any
+    mean_load: np.ndarray
+    stiffness_harmonics: list[np.ndarray]
+    damping_harmonics: list[np.ndarray]
+    load_harmonics: list[np.ndarray]
+
+    @property
+    def dofs(self) -> list[dict[str, Any]]:
+        return list(self.report["dofs"])
+
+    @property
+    def period_meshes(self) -> int:
+        return int(self.report["period_meshes"])
