@@ -9,12 +9,16 @@
 #pragma once
 
 #include <functional>
+#include <iosfwd>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "geardyn/analyses/floquet.hpp"
 #include "geardyn/analyses/modal.hpp"
 #include "geardyn/analyses/system_nonlinear_hb.hpp"
+#include "geardyn/analyses/time_response.hpp"
+#include "geardyn/compare_runner.hpp"
 #include "geardyn/hb_report.hpp"
 #include "geardyn/models/scene/scene.hpp"
 #include "geardyn/modes_report.hpp"
@@ -98,5 +102,48 @@ ChartRun RunChartAnalysis(const std::string& scene, const std::string& scene_tex
                           const std::vector<std::string>& overrides,
                           const ChartRunSettings& settings, const std::string& out_dir = {},
                           const ProgressLine& progress = {});
+
+/// `geardyn compare` without --vary: the scene at several model levels. `settings` is complete
+/// (levels and analyses parsed, scene_path, scene_text and overrides set for the charts and the
+/// contact matching). Writes compare.json and the CSV/SVG files to `out_dir` unless it is empty;
+/// progress lines go to `progress` when settings.progress (may be null).
+struct CompareRun : RunReport {};
+CompareRun RunCompareAnalysis(const Scene& scene, const CompareSettings& settings,
+                              const std::string& out_dir = {}, std::ostream* progress = nullptr);
+
+/// The settings of `geardyn simulate` (its options but the scene's).
+struct SimulateSettings {
+  std::string mesh_frequency;   ///< --mesh-frequency ("" = the operating point)
+  std::string sweep;            ///< --sweep up|down|both ("" = independent speeds)
+  std::vector<double> torques;  ///< --torque [N·m]
+  std::string integrator = "auto";
+  double tolerance = TimeIntegrationOptions{}.relative_tolerance;
+  double steady_tolerance = SteadyStateOptions{}.tolerance;
+  int max_periods = SteadyStateOptions{}.max_periods;
+  int record_periods = SteadyStateOptions{}.record_periods;
+  int samples_per_period = TimeIntegrationOptions{}.samples_per_period;
+  double max_step = TimeIntegrationOptions{}.max_step_fraction;
+  int threads = 0;
+  bool quasi_static = false;
+  bool full_period = false;  ///< --full-period: no symmetry shift in the steady test
+  bool overlay_hb = false;
+  bool progress = false;
+};
+
+/// `geardyn simulate`: time integration to steady state (one speed, several, sweeps) or the
+/// quasi-static export. Writes the command's files to `out_dir` unless empty; progress and the
+/// pre-run warnings go to `progress` (they are in the report's warnings too). exit_code as the
+/// command's (130 when interrupted). `scene_text`: the scene's TOML text when it was not read
+/// from scene.source (empty: the --overlay-hb matching reloads scene.source).
+struct SimulateRun : RunReport {
+  /// A single run's response (time, DTE and force histories of the recorded periods); null for
+  /// sweeps, several torques and the quasi-static export.
+  std::shared_ptr<const TimeResponse> history;
+  double initial_phase = 0.0;  ///< θ at t = 0 [rad] (the DTE history's phase origin)
+};
+SimulateRun RunSimulateAnalysis(const Scene& scene, const std::string& scene_text,
+                                const SimulateSettings& settings,
+                                const std::string& out_dir = {},
+                                const ProgressLine& progress = {});
 
 }  // namespace geardyn::app

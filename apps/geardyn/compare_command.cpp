@@ -7,6 +7,7 @@
 #include <memory>
 #include <sstream>
 
+#include "geardyn/analysis_runs.hpp"
 #include "geardyn/cli.hpp"
 #include "geardyn/command.hpp"
 #include "geardyn/common/check.hpp"
@@ -80,25 +81,10 @@ int RunCompareCommand(CompareCommandOptions opts, std::ostream& out, std::ostrea
   const std::string& dir = opts.scene.out_dir;
   if (opts.vary.empty()) {
     const Scene scene = LoadScene(opts.scene.scene, opts.scene.overrides);
-    const CompareResult result = RunCompare(scene, settings, &err);
-    const std::string json_text = MakeCompareReport(result).dump(2) + "\n";
-    out << (opts.scene.json ? json_text : FormatCompareText(result));
-    if (!dir.empty()) {
-      WriteOutputFile(dir, "compare.json", json_text);
-      WriteOutputFile(dir, "compare_levels.csv", FormatCompareLevelsCsv(result));
-      WriteOutputFile(dir, "compare_modes.csv", FormatCompareModesCsv(result));
-      if (std::any_of(result.runs.begin(), result.runs.end(),
-                      [](const LevelRun& l) { return l.chart.has_value(); })) {
-        WriteOutputFile(dir, "compare_chart.svg", RenderCompareChartPlot(result));
-        WriteOutputFile(dir, "compare_chart.csv", FormatCompareChartCsv(result));
-      }
-      if (!result.frequencies_hz.empty()) {
-        WriteOutputFile(dir, "compare_dte.csv", FormatCompareDteCsv(result));
-        WriteOutputFile(dir, "compare_dte.svg", RenderCompareDtePlot(result));
-      }
-      if (!opts.scene.json) out << "written to " << dir << "\n";
-    }
-    return result.ok ? int{kExitOk} : int{kExitNumericalIssue};
+    const CompareRun run = RunCompareAnalysis(scene, settings, dir, &err);
+    out << (opts.scene.json ? run.report.dump(2) + "\n" : run.text);
+    if (!dir.empty() && !opts.scene.json) out << "written to " << dir << "\n";
+    return run.exit_code;
   }
   const auto [keys, values] = ParseVary(opts.vary);
   std::string key_text;
@@ -127,6 +113,32 @@ int RunCompareCommand(CompareCommandOptions opts, std::ostream& out, std::ostrea
 }
 
 }  // namespace
+
+CompareRun RunCompareAnalysis(const Scene& scene, const CompareSettings& settings,
+                              const std::string& dir, std::ostream* progress) {
+  ValidateCompareSettings(settings);
+  const CompareResult result = RunCompare(scene, settings, progress);
+  CompareRun run;
+  run.report = MakeCompareReport(result);
+  run.text = FormatCompareText(result);
+  if (!dir.empty()) {
+    WriteOutputFile(dir, "compare.json", run.report.dump(2) + "\n");
+    WriteOutputFile(dir, "compare_levels.csv", FormatCompareLevelsCsv(result));
+    WriteOutputFile(dir, "compare_modes.csv", FormatCompareModesCsv(result));
+    if (std::any_of(result.runs.begin(), result.runs.end(),
+                    [](const LevelRun& l) { return l.chart.has_value(); })) {
+      WriteOutputFile(dir, "compare_chart.svg", RenderCompareChartPlot(result));
+      WriteOutputFile(dir, "compare_chart.csv", FormatCompareChartCsv(result));
+    }
+    if (!result.frequencies_hz.empty()) {
+      WriteOutputFile(dir, "compare_dte.csv", FormatCompareDteCsv(result));
+      WriteOutputFile(dir, "compare_dte.svg", RenderCompareDtePlot(result));
+    }
+  }
+  run.exit_code = result.ok ? int{kExitOk} : int{kExitNumericalIssue};
+  return run;
+}
+
 
 Command AddCompareCommand(CLI::App& app) {
   auto opts = std::make_shared<CompareCommandOptions>();

@@ -192,7 +192,10 @@ CompareResult RunCompare(const Scene& scene, const CompareSettings& input,
         overrides.insert(overrides.end(), extra.begin(), extra.end());
         SceneSystemOptions so;
         so.analysis = "compare (matched slices)";
-        return BuildSceneSystem(LoadScene(settings.scene_path, overrides), so).model;
+        const Scene variant = settings.scene_text.empty()
+                                  ? LoadScene(settings.scene_path, overrides)
+                                  : ParseScene(settings.scene_text, settings.scene_path, overrides);
+        return BuildSceneSystem(variant, so).model;
       };
       const std::vector<SliceMatch> matches =
           MatchSlicesToContact(contact_model, contact_scene, build_slices, &result.warnings);
@@ -326,6 +329,7 @@ CompareResult RunCompare(const Scene& scene, const CompareSettings& input,
         const auto t0 = std::chrono::steady_clock::now();
         SceneChartSettings chart;
         chart.scene = settings.scene_path;
+        chart.scene_text = settings.scene_text;
         chart.overrides = settings.overrides;
         chart.overrides.insert(chart.overrides.end(), match_overrides.begin(),
                                match_overrides.end());

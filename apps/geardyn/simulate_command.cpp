@@ -22,6 +22,7 @@
 #include "geardyn/analyses/harmonic_balance.hpp"
 #include "geardyn/analyses/system_nonlinear_hb.hpp"
 #include "geardyn/analyses/time_response.hpp"
+#include "geardyn/analysis_runs.hpp"
 #include "geardyn/cli.hpp"
 #include "geardyn/command.hpp"
 #include "geardyn/common/check.hpp"
@@ -32,6 +33,7 @@
 #include "geardyn/models/system/scene_system.hpp"
 #include "geardyn/output_files.hpp"
 #include "geardyn/overlay_match.hpp"
+#include "geardyn/progress_stream.hpp"
 #include "geardyn/quasi_static.hpp"
 #include "geardyn/simulate_report.hpp"
 
@@ -56,23 +58,12 @@ constexpr double kHighSpeedFactor = 100.0;
 // loads give δ ≲ 1e-3 p_bn: ≈ 10–30 µm on module 3–10 mm teeth).
 constexpr double kDeflectionPitchFraction = 0.02;
 
-struct SimulateOptions {
+// The command's options: SimulateSettings (analysis_runs.hpp) and the scene's.
+struct SimulateOptions : SimulateSettings {
   SceneCommandOptions scene;
-  std::string mesh_frequency;   // --mesh-frequency ("" = the operating point)
-  std::string sweep;            // --sweep up|down|both ("" = independent speeds)
-  std::vector<double> torques;  // --torque
-  std::string integrator = "auto";
-  double tolerance = TimeIntegrationOptions{}.relative_tolerance;
-  double steady_tolerance = SteadyStateOptions{}.tolerance;
-  int max_periods = SteadyStateOptions{}.max_periods;
-  int record_periods = SteadyStateOptions{}.record_periods;
-  int samples_per_period = TimeIntegrationOptions{}.samples_per_period;
-  double max_step = TimeIntegrationOptions{}.max_step_fraction;
-  int threads = 0;
-  bool quasi_static = false;
-  bool full_period = false;  // --full-period: no symmetry shift in the steady test
-  bool overlay_hb = false;
-  bool progress = false;
+  /// The scene's TOML text when it was not read from scene.scene (the Python package); the
+  /// --overlay-hb slice matching reloads the scene with overrides.
+  std::string scene_text;
 };
 
 // The SceneSystemOptions of the time-domain runs: analysis "simulate", and tooth-contact meshes
@@ -194,7 +185,10 @@ HbOverlay ComputeOverlay(const SimulateOptions& o, const Scene& scene_t, double 
     const auto build = [&](const std::vector<std::string>& extra) {
       std::vector<std::string> overrides = o.scene.overrides;
       overrides.insert(overrides.end(), extra.begin(), extra.end());
-      return BuildSceneSystem(AtTorque(LoadScene(o.scene.scene, overrides), torque), so).model;
+      const Scene variant = o.scene_text.empty()
+                                  ? LoadScene(o.scene.scene, overrides)
+                                  : ParseScene(o.scene_text, o.scene.scene, overrides);
+      return BuildSceneSystem(AtTorque(variant, torque), so).model;
     };
     try {
       if (o.progress) err << "geardyn simulate: --overlay-hb: matching the slice model\n";
@@ -328,6 +322,7 @@ std::vector<std::string> PreRunWarnings(const Scene& scene_t, const SystemModel&
 }
 
 int RunQuasiStatic(const SimulateOptions& o, const Scene& scene, const std::vector<double>& torques,
+                   std::string* text_out,
                    std::ostream& out) {
   nlohmann::json report = {{"scene", scene.source}, {"mode", "quasi_static"}};
   nlohmann::json runs = nlohmann::json::array();
@@ -423,6 +418,7 @@ int RunQuasiStatic(const SimulateOptions& o, const Scene& scene, const std::vect
   const std::string json_text = report.dump(2) + "\n";
   files.push_back({"quasi_static.json", json_text});
   out << (o.scene.json ? json_text : text);
+  if (text_out != nullptr) *text_out = text;
   if (!o.scene.out_dir.empty()) {
     for (const auto& [name, content] : files) WriteOutputFile(o.scene.out_dir, name, content);
     if (!o.scene.json) out << "written to " << o.scene.out_dir << "\n";
@@ -430,17 +426,20 @@ int RunQuasiStatic(const SimulateOptions& o, const Scene& scene, const std::vect
   return ok ? int{kExitOk} : int{kExitNumericalIssue};
 }
 
-int RunSimulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) {
+// The run on a loaded scene; `text_out` and `history_out` (may be null) receive the text report
+// and a single run's response (its histories).
+int RunSimulateScene(const SimulateOptions& o, const Scene& scene, std::ostream& out,
+                     std::ostream& err, std::string* text_out,
+                     std::shared_ptr<const TimeResponse>* history_out) {
   Validate(o);
   const auto start = std::chrono::steady_clock::now();
-  const Scene scene = LoadScene(o.scene.scene, o.scene.overrides);
   GEARDYN_THROW_UNLESS(!scene.oscillator || (o.torques.empty() && !o.quasi_static),
                        (o.quasi_static ? "--quasi-static" : "--torque")
                            << ": an oscillator scene has no torque or slow roll (its load is "
                               "oscillator.mean_force and alternating_force; set them with --set)");
   const std::vector<double> torques =
       o.torques.empty() ? std::vector<double>{scene.operating_point.torque} : o.torques;
-  if (o.quasi_static) return RunQuasiStatic(o, scene, torques, out);
+  if (o.quasi_static) return RunQuasiStatic(o, scene, torques, text_out, out);
 
   std::vector<double> frequencies;
   if (o.mesh_frequency.empty()) {
@@ -572,7 +571,9 @@ int RunSimulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) 
     report["overlays"] = list;
   }
   const std::string json_text = report.dump(2) + "\n";
-  out << (o.scene.json ? json_text : FormatSimulateText(report));
+  const std::string text = FormatSimulateText(report);
+  out << (o.scene.json ? json_text : text);
+  if (text_out != nullptr) *text_out = text;
   if (!o.scene.out_dir.empty()) {
     const std::string& dir = o.scene.out_dir;
     WriteOutputFile(dir, "simulate.json", json_text);
@@ -593,6 +594,7 @@ int RunSimulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) 
     }
     if (!o.scene.json) out << "written to " << dir << "\n";
   }
+  if (history_out != nullptr && single != nullptr) *history_out = std::move(single);
   if (info.interrupted) {
     err << "geardyn simulate: interrupted (SIGINT); the results computed so far were "
         << (o.scene.out_dir.empty() ? std::string("printed") : "written to " + o.scene.out_dir)
@@ -602,7 +604,31 @@ int RunSimulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) 
   return report["status"] == "success" ? int{kExitOk} : int{kExitNumericalIssue};
 }
 
+int RunSimulate(const SimulateOptions& o, std::ostream& out, std::ostream& err) {
+  Validate(o);  // bad options fail before the scene is read
+  const Scene scene = LoadScene(o.scene.scene, o.scene.overrides);
+  return RunSimulateScene(o, scene, out, err, nullptr, nullptr);
+}
+
 }  // namespace
+
+SimulateRun RunSimulateAnalysis(const Scene& scene, const std::string& scene_text,
+                                const SimulateSettings& settings, const std::string& out_dir,
+                                const ProgressLine& progress) {
+  SimulateOptions o;
+  static_cast<SimulateSettings&>(o) = settings;
+  o.scene.scene = scene.source;
+  o.scene_text = scene_text;
+  o.scene.out_dir = out_dir;
+  o.scene.json = true;  // `out` receives the report JSON alone
+  std::ostringstream out;
+  ProgressStream err(progress);
+  SimulateRun run;
+  run.exit_code = RunSimulateScene(o, scene, out, err, &run.text, &run.history);
+  run.initial_phase = MakeResponseOptions(o).initial_phase;
+  run.report = nlohmann::json::parse(out.str());
+  return run;
+}
 
 Command AddSimulateCommand(CLI::App& app) {
   auto opts = std::make_shared<SimulateOptions>();

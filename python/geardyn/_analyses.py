@@ -17,11 +17,13 @@ from typing import Any
 import numpy as np
 
 from . import _geardyn  # type: ignore[attr-defined]
-from ._results import (FloquetResult, HbResult, InfoResult, MeshResult, MeshTable, ModesResult,
-                       StabilityChartResult, Summary, SystemMatrices)
+from ._results import (CompareResult, FloquetResult, HbResult, InfoResult, MeshResult,
+                       MeshTable, ModesResult, SimulateResult, StabilityChartResult, Summary,
+                       SystemMatrices)
 from ._scene import Scene
 
-__all__ = ["info", "mesh", "modes", "floquet", "hb", "stability_chart", "system_matrices"]
+__all__ = ["info", "mesh", "modes", "floquet", "hb", "stability_chart", "system_matrices",
+           "simulate", "compare"]
 
 SceneLike = Scene | str | os.PathLike[str]
 Progress = Callable[[str], None] | None
@@ -199,7 +201,7 @@ def stability_chart(scene: SceneLike, *, x: str | tuple[str, float, float, int],
         tolerance: Floquet error target of every point.
     """
     s = _scene(scene)
-    text = "" if s.source.startswith("builtin:") and s._text is None else s.text
+    text = _scene_text(s)
     raw = _geardyn.stability_chart(s.source, text, list(s.overrides), _axis(x), _axis(y), threads,
                                    method, tolerance, boundary_tolerance, max_order, difference,
                                    curves, _out(out_dir), progress)
@@ -233,3 +235,110 @@ def system_matrices(scene: SceneLike, *, harmonics: int = 0,
     return SystemMatrices(raw["report"], csc(raw["mass"]), csc(raw["damping"]),
                           csc(raw["stiffness"]), raw["mean_load"], list(raw["stiffness_harmonics"]),
                           list(raw["damping_harmonics"]), list(raw["load_harmonics"]))
+
+
+def _floats(values: Sequence[Any]) -> np.ndarray:
+    return np.array([math.nan if v is None else float(v) for v in values], dtype=float)
+
+
+def _scene_text(s: Scene) -> str:
+    """The text the C++ runners reload the scene from ("" for a built-in or file scene that is
+    read again by name)."""
+    return "" if s._text is None else s.text
+
+
+def simulate(scene: SceneLike, *, mesh_frequency: str | float | Sequence[float] | None = None,
+             sweep: str = "", torque: float | Sequence[float] | None = None,
+             integrator: str = "auto", tolerance: float | None = None,
+             steady_tolerance: float | None = None, max_periods: int | None = None,
+             record_periods: int | None = None, samples_per_period: int | None = None,
+             max_step: float | None = None, threads: int = 0, quasi_static: bool = False,
+             full_period: bool = False, overlay_hb: bool = False,
+             out_dir: str | os.PathLike[str] | None = None,
+             progress: Progress = None) -> SimulateResult:
+    """``geardyn simulate``: time integration of the scene's system to steady state.
+
+    Args:
+        mesh_frequency: one frequency [Hz] (default: the operating point), "lo:hi:n" or
+            (lo, hi, n) for several (independent runs in parallel, or a stepped ``sweep``).
+        sweep: "" (independent speeds), "up", "down" or "both" (the state carried from point to
+            point: both branches of a jump).
+        torque: mean torque(s) [N·m] (default: the scene's).
+        integrator: "auto", "runge_kutta", "generalized_alpha", ... (``geardyn simulate --help``).
+        quasi_static: export the loaded K(θ) and STE as a mesh-parameter table instead.
+        progress: called with each progress line and the pre-run warnings.
+    Defaults of the numeric options are the command's.
+    """
+    s = _scene(scene)
+    torques = [] if torque is None else (
+        [float(torque)] if isinstance(torque, (int, float)) else [float(t) for t in torque])
+    raw = _geardyn.simulate(s.handle(), _scene_text(s), _frequency_spec(mesh_frequency), sweep,
+                            torques, integrator, tolerance, steady_tolerance, max_periods,
+                            record_periods, samples_per_period, max_step, threads, quasi_static,
+                            full_period, overlay_hb, _out(out_dir), progress)
+    report = raw["report"]
+    points = report.get("points", [])
+    names = sorted({m["name"] for p in points for m in p.get("meshes", [])})
+
+    def column(key: str) -> dict[str, np.ndarray]:
+        return {n: _floats([next((m.get(key) for m in p.get("meshes", []) if m["name"] == n),
+                                 None) for p in points]) for n in names}
+
+    histories = raw["histories"]
+    empty = np.zeros(0)
+    return SimulateResult(
+        **_run_fields(raw, Summary._from_report(report)),
+        mesh_frequency_hz=_floats([p.get("mesh_frequency_hz") for p in points]),
+        torque_nm=_floats([p.get("torque_nm") for p in points]),
+        branch=[str(p.get("branch", "")) for p in points], rms_dte_m=column("rms_dte_m"),
+        peak_to_peak_dte_m=column("peak_to_peak_dte_m"),
+        steady=[str(p.get("steady", "")) for p in points],
+        time_s=raw.get("time_s", empty),
+        dte_m={n: h["dte_m"] for n, h in histories.items()},
+        force_n={n: h["force_n"] for n, h in histories.items()})
+
+
+def compare(scene: SceneLike, *, levels: str | Sequence[str] | None = None,
+            analyses: str | Sequence[str] = "modes,floquet,hb", reference: str = "",
+            mesh: str = "", mesh_frequency: str | float | Sequence[float] | None = None,
+            num_modes: int = 12, nonlinear_harmonics: int = 24, branch_search: int = 8,
+            max_periods: int = 3000, threads: int = 0, match_contact: bool = True,
+            chart_x: str | tuple[str, float, float, int] = "",
+            chart_y: str | tuple[str, float, float, int] = "",
+            out_dir: str | os.PathLike[str] | None = None,
+            progress: Progress = None) -> CompareResult:
+    """``geardyn compare``: the scene at several model levels (contact, slices,
+    blankenship_singh, bs_projected, five_dof, coupling_4dof, lti, torsional) side by side —
+    modes matched by MAC, Floquet verdicts, DTE curves, differences to the reference level.
+
+    Args:
+        levels: the levels (default: all but contact; a listed level the scene cannot build is
+            an error, a default one is skipped with the reason).
+        analyses: of modes, floquet, hb, simulate.
+        mesh_frequency: the DTE grid (default 0.2 … 2.5 times the scene's, 60 points).
+        chart_x, chart_y: a stability chart per level over these axes ("PATH=LO:HI:N").
+    """
+    s = _scene(scene)
+    level_text = None if levels is None else (levels if isinstance(levels, str)
+                                              else ",".join(levels))
+    analysis_text = analyses if isinstance(analyses, str) else ",".join(analyses)
+    raw = _geardyn.compare(s.handle(), _scene_text(s), list(s.overrides), level_text,
+                           analysis_text, reference, mesh, _frequency_spec(mesh_frequency),
+                           num_modes, nonlinear_harmonics, branch_search, max_periods, threads,
+                           match_contact, _axis(chart_x) if chart_x else "",
+                           _axis(chart_y) if chart_y else "", _out(out_dir), progress)
+    report = raw["report"]
+    runs = report.get("levels", [])
+    names = [r["level"] for r in runs]
+
+    def dte(key: str) -> dict[str, np.ndarray]:
+        return {r["level"]: _floats((r.get("dte") or {}).get(key, [])) for r in runs
+                if r.get("dte")}
+
+    return CompareResult(
+        **_run_fields(raw, Summary._from_report(report)), levels=names,
+        frequencies_hz=_floats(report.get("frequencies_hz", [])), rms_dte_up_m=dte("rms_up_m"),
+        rms_dte_down_m=dte("rms_down_m"),
+        modal_frequencies_hz={r["level"]: _floats(r["modes"].get("frequencies_hz", []))
+                              for r in runs if isinstance(r.get("modes"), dict)},
+        references=dict(report.get("references", {})))

@@ -15,7 +15,8 @@ from typing import Any
 import numpy as np
 
 __all__ = ["Summary", "ModesResult", "FloquetResult", "HbResult", "StabilityChartResult",
-           "MeshTable", "MeshResult", "InfoResult", "SystemMatrices"]
+           "MeshTable", "MeshResult", "InfoResult", "SystemMatrices", "SimulateResult",
+           "CompareResult"]
 
 
 @dataclass(frozen=True)
@@ -222,3 +223,51 @@ class SystemMatrices:
     @property
     def period_meshes(self) -> int:
         return int(self.report["period_meshes"])
+
+
+@dataclass(frozen=True)
+class SimulateResult(_Run):
+    """``geardyn simulate``: time integration to steady state (one speed, several, or stepped
+    sweeps), per mean torque.
+
+    Attributes:
+        mesh_frequency_hz: (p,) the points' mesh frequencies [Hz] (report["points"]).
+        torque_nm: (p,) the points' mean torque [N·m].
+        branch: (p,) "single", "independent", "up" or "down".
+        rms_dte_m, peak_to_peak_dte_m: mesh name → (p,) [m] (NaN where a point has none).
+        steady: (p,) the points' steady-state verdicts ("steady", "not_steady", ...).
+        time_s: (s,) the recorded periods' sample times of a single run [s]; empty otherwise.
+        dte_m, force_n: mesh name → (s,) DTE [m] and mesh force [N] histories of a single run.
+    """
+
+    mesh_frequency_hz: np.ndarray
+    torque_nm: np.ndarray
+    branch: list[str]
+    rms_dte_m: dict[str, np.ndarray]
+    peak_to_peak_dte_m: dict[str, np.ndarray]
+    steady: list[str]
+    time_s: np.ndarray
+    dte_m: dict[str, np.ndarray]
+    force_n: dict[str, np.ndarray]
+
+
+@dataclass(frozen=True)
+class CompareResult(_Run):
+    """``geardyn compare``: one scene at several model levels side by side.
+
+    Attributes:
+        levels: the levels that ran, in report order (report["levels"] has each one's modes,
+            Floquet verdict, DTE and comparison with the reference).
+        frequencies_hz: (g,) the DTE grid [Hz].
+        rms_dte_up_m, rms_dte_down_m: level → (g,) RMS DTE along the up/down sweep branches [m]
+            (NaN where the level has no stable solution or ran no DTE).
+        modal_frequencies_hz: level → its natural frequencies [Hz].
+        references: analysis → the reference level.
+    """
+
+    levels: list[str]
+    frequencies_hz: np.ndarray
+    rms_dte_up_m: dict[str, np.ndarray]
+    rms_dte_down_m: dict[str, np.ndarray]
+    modal_frequencies_hz: dict[str, np.ndarray]
+    references: dict[str, str]

@@ -74,7 +74,7 @@ def summarize(analysis: str, result: Any) -> dict[str, Any]:
         row["max_abs_multiplier"] = _finite(float(result.max_abs_multiplier))
         row["verdict"] = result.verdict
         row["stable"] = result.stable
-    elif analysis == "hb":
+    elif analysis in ("hb", "simulate"):
         for name, rms in result.rms_dte_m.items():
             finite = [(float(v), float(f)) for v, f in zip(rms, result.mesh_frequency_hz)
                       if math.isfinite(v)]

@@ -38,5 +38,6 @@ void BindScene(py::module_& m);
 void BindSummary(py::module_& m);
 void BindAnalyses(py::module_& m);
 void BindMatrices(py::module_& m);
+void BindTimeAndCompare(py::module_& m);
 
 }  // namespace geardyn::python

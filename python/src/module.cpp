@@ -42,4 +42,5 @@ PYBIND11_MODULE(_geardyn, m) {
   geardyn::python::BindScene(m);
   geardyn::python::BindAnalyses(m);
   geardyn::python::BindMatrices(m);
+  geardyn::python::BindTimeAndCompare(m);
 }
