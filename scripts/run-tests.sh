@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The whole test suite on a fresh machine: install dependencies, build everything with tests and
-# examples, run ctest. Arguments go to ctest (e.g. -L unit, -R Floquet, -LE stress).
+# The whole test suite on a fresh machine: install dependencies, build everything with tests,
+# examples and the Python package (build/test/python: PYTHONPATH=build/test/python imports
+# geardyn), run ctest. Arguments go to ctest (e.g. -L unit, -R Floquet, -LE stress, -L python).
 #
 # The suite is built with clang (-O2 without debug information, build/test): clang compiles
 # geardyn's Eigen-heavy code in about half of GCC's time (docs/benchmarks.md "Build and CI time").
@@ -32,6 +33,7 @@ configure() {
   mkdir -p "$dir"
   cmake -S "$root" -B "$dir" "${generator[@]}" -DCMAKE_CXX_COMPILER="$compiler" \
         -DCMAKE_BUILD_TYPE=Release "$@" -DGEARDYN_BUILD_TESTS=ON -DGEARDYN_BUILD_EXAMPLES=ON \
+        -DGEARDYN_BUILD_PYTHON=ON \
         -DGEARDYN_WARNINGS_AS_ERRORS="${GEARDYN_WARNINGS_AS_ERRORS:-OFF}"
 }
 # -O2 without debug information: the tests need the speed, not a debugger (a -g build of the

@@ -67,8 +67,8 @@ struct HbRunSettings {
   std::string stability = "monodromy";  ///< --stability none|monodromy|hill
   int monodromy_steps = 0;              ///< --monodromy-steps (0: automatic)
   int branch_search = SystemNhbOptions{}.continuation.branch_search;  ///< --branch-search (0: off)
-  bool harmonics_given = false;         ///< --harmonics was given (0 is then an error)
-  bool tolerance_given = false;         ///< --tolerance was given
+  bool harmonics_given = false;  ///< --harmonics was given (0 is then an error)
+  bool tolerance_given = false;  ///< --tolerance was given
 };
 
 /// `geardyn hb`: linear HB sweep (with Floquet verdicts) or nonlinear continuation. Writes
@@ -142,8 +142,7 @@ struct SimulateRun : RunReport {
   double initial_phase = 0.0;  ///< θ at t = 0 [rad] (the DTE history's phase origin)
 };
 SimulateRun RunSimulateAnalysis(const Scene& scene, const std::string& scene_text,
-                                const SimulateSettings& settings,
-                                const std::string& out_dir = {},
+                                const SimulateSettings& settings, const std::string& out_dir = {},
                                 const ProgressLine& progress = {});
 
 }  // namespace geardyn::app

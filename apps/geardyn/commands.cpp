@@ -43,9 +43,9 @@ void AddSceneOptions(CLI::App* cmd, SceneCommandOptions* opts) {
 const std::vector<CommandFactory>& CommandFactories() {
   // One line per subcommand; keep the order of `geardyn --help`.
   static const std::vector<CommandFactory> factories = {
-      &AddInfoCommand,  &AddScenesCommand,   &AddMeshCommand,
-      &AddModesCommand, &AddFloquetCommand,  &AddStabilityChartCommand,
-      &AddHbCommand,    &AddSimulateCommand, &AddCompareCommand, &AddMatricesCommand,
+      &AddInfoCommand,    &AddScenesCommand,         &AddMeshCommand, &AddModesCommand,
+      &AddFloquetCommand, &AddStabilityChartCommand, &AddHbCommand,   &AddSimulateCommand,
+      &AddCompareCommand, &AddMatricesCommand,
   };
   return factories;
 }

@@ -139,7 +139,6 @@ CompareRun RunCompareAnalysis(const Scene& scene, const CompareSettings& setting
   return run;
 }
 
-
 Command AddCompareCommand(CLI::App& app) {
   auto opts = std::make_shared<CompareCommandOptions>();
   CLI::App* cmd = app.add_subcommand(

@@ -77,7 +77,7 @@ struct CompareSettings {
   /// `geardyn stability-chart --x/--y`; empty: none. They need the scene's path and overrides
   /// (the chart reloads the scene at every axis value).
   std::string chart_x, chart_y;
-  std::string scene_path;              ///< file or builtin:NAME (charts)
+  std::string scene_path;  ///< file or builtin:NAME (charts)
   /// The scene's TOML text when it was not read from scene_path (the Python package's text and
   /// dict scenes); empty: LoadScene(scene_path).
   std::string scene_text;

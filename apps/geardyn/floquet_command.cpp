@@ -145,9 +145,9 @@ FloquetRun RunFloquetAnalysis(const Scene& scene, const FloquetSettings& setting
                               const std::string& out_dir) {
   FloquetOptions options;
   options.method = ParseFloquetMethod(settings.method, "--method");
-  GEARDYN_THROW_UNLESS(std::isfinite(settings.tolerance) && settings.tolerance > 0.0 &&
-                           settings.tolerance < 1.0,
-                       "--tolerance: must be a finite number in (0, 1), got " << settings.tolerance);
+  GEARDYN_THROW_UNLESS(
+      std::isfinite(settings.tolerance) && settings.tolerance > 0.0 && settings.tolerance < 1.0,
+      "--tolerance: must be a finite number in (0, 1), got " << settings.tolerance);
   options.tolerance = settings.tolerance;
   options.arpack_nev = settings.nev;
   // --nev is checked here, naming the flag: FloquetOptions names its own field (arpack_nev).
@@ -168,7 +168,8 @@ FloquetRun RunFloquetAnalysis(const Scene& scene, const FloquetSettings& setting
                        ": the mesh frequency is 0 (operating_point.speed_rpm must be > 0)");
   }
   GEARDYN_THROW_UNLESS(
-      options.method != FloquetMethod::kArpackMonodromy || settings.nev <= 2 * built.model.num_dofs(),
+      options.method != FloquetMethod::kArpackMonodromy ||
+          settings.nev <= 2 * built.model.num_dofs(),
       "--nev: must be <= 2n = " << 2 * built.model.num_dofs() << " (the multipliers of the "
                                 << built.model.num_dofs() << "-DOF system), got " << settings.nev);
   FloquetRun run;
@@ -188,7 +189,6 @@ FloquetRun RunFloquetAnalysis(const Scene& scene, const FloquetSettings& setting
                       : int{kExitNumericalIssue};
   return run;
 }
-
 
 Command AddFloquetCommand(CLI::App& app) {
   auto opts = std::make_shared<FloquetCommandOptions>();

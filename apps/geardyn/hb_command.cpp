@@ -80,8 +80,8 @@ void Finish(HbRun* run, nlohmann::json report, std::string text, const std::stri
 }
 
 HbRun RunNonlinearHb(const HbRunSettings& opts, const Scene& scene, const SceneSystem& built,
-                      const std::vector<double>& frequencies, const std::string& out_dir,
-                      const ProgressLine& err) {
+                     const std::vector<double>& frequencies, const std::string& out_dir,
+                     const ProgressLine& err) {
   const HbSettings& settings = opts.settings;
   GEARDYN_THROW_UNLESS(
       settings.harmonics >= 0,
@@ -195,8 +195,8 @@ HbRun RunNonlinearHb(const HbRunSettings& opts, const Scene& scene, const SceneS
 }
 
 HbRun RunLinearHb(const HbRunSettings& opts, const Scene& scene, const SceneSystem& built,
-                   const std::vector<double>& frequencies, const std::string& out_dir,
-                   const ProgressLine& err) {
+                  const std::vector<double>& frequencies, const std::string& out_dir,
+                  const ProgressLine& err) {
   GEARDYN_THROW_UNLESS(opts.settings.harmonics == 0 || !opts.tolerance_given,
                        "--tolerance: chooses H (H = 8, 16, ... until the RMS DTE changes by at "
                        "most the tolerance) and is not used with a fixed --harmonics "
@@ -228,11 +228,11 @@ HbRun RunLinearHb(const HbRunSettings& opts, const Scene& scene, const SceneSyst
       MakeHbReport(scene.source, opts.settings, sweep, built.warnings, stability.get());
   std::vector<std::pair<std::string, std::string>> files;
   if (!out_dir.empty()) {
-    files = {{"hb.json", report.dump(2) + "\n"},
-             {"hb.csv", FormatHbCsv(sweep, stability.get())},
-             {"hb_rms_dte.svg",
-              RenderHbPlot(sweep, "RMS DTE (linear harmonic balance): " + scene.source,
-                           stability.get())}};
+    files = {
+        {"hb.json", report.dump(2) + "\n"},
+        {"hb.csv", FormatHbCsv(sweep, stability.get())},
+        {"hb_rms_dte.svg", RenderHbPlot(sweep, "RMS DTE (linear harmonic balance): " + scene.source,
+                                        stability.get())}};
   }
   HbRun run;
   std::string text = FormatHbText(report);
@@ -304,7 +304,6 @@ HbRun RunHbAnalysis(const Scene& scene, const HbRunSettings& opts, const std::st
   return RunLinearHb(opts, scene, built, frequencies, out_dir, progress);
 }
 
-
 Command AddHbCommand(CLI::App& app) {
   auto opts = std::make_shared<HbCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
@@ -353,7 +352,8 @@ Command AddHbCommand(CLI::App& app) {
                   "traced curve (a detached branch or an isola) is traced both ways and added as "
                   "a new segment (JSON 'segment', new branch numbers)")
       ->check(CLI::Range(0, NhbContinuationOptions::kMaxBranchSearch));
-  cmd->add_flag("--progress", opts->run.settings.progress, "print the progress on the error stream");
+  cmd->add_flag("--progress", opts->run.settings.progress,
+                "print the progress on the error stream");
   Command command{cmd, nullptr};
   command.run_with_err = [opts](std::ostream& out, std::ostream& err) {
     return RunHb(*opts, out, err);

@@ -69,9 +69,9 @@ std::string FormatMatrixMarket(const VectorXc& v, const std::string& comment) {
 }
 
 SystemMatrices ExportSystemMatrices(const Scene& scene, int harmonics) {
-  GEARDYN_THROW_UNLESS(harmonics >= 0 && harmonics <= kMaxExportHarmonics,
-                       "--harmonics: must be in [0, " << kMaxExportHarmonics << "], got "
-                                                      << harmonics);
+  GEARDYN_THROW_UNLESS(
+      harmonics >= 0 && harmonics <= kMaxExportHarmonics,
+      "--harmonics: must be in [0, " << kMaxExportHarmonics << "], got " << harmonics);
   // The mean pencil as `geardyn modes` builds it: ε is forcing, not part of M, C̄, K̄.
   SceneSystemOptions options;
   options.analysis = "matrices";  // named if a mass is missing
@@ -111,16 +111,15 @@ SystemMatrices ExportSystemMatrices(const Scene& scene, int harmonics) {
                     {"kind", out.dof_kinds[i]},
                     {"unit", out.dof_kinds[i].rfind("translation", 0) == 0 ? "m" : "rad"}});
   }
-  nlohmann::json files = {{"mass", "M.mtx"},
-                          {"damping", "C.mtx"},
-                          {"stiffness", "K.mtx"},
-                          {"mean_load", "f.mtx"}};
+  nlohmann::json files = {
+      {"mass", "M.mtx"}, {"damping", "C.mtx"}, {"stiffness", "K.mtx"}, {"mean_load", "f.mtx"}};
   nlohmann::json harmonic_files = nlohmann::json::array();
   for (int m = 1; m <= harmonics; ++m) {
     const std::string k = std::to_string(m);
-    harmonic_files.push_back(
-        {{"m", m}, {"stiffness", "K_" + k + ".mtx"}, {"damping", "C_" + k + ".mtx"},
-         {"load", "f_" + k + ".mtx"}});
+    harmonic_files.push_back({{"m", m},
+                              {"stiffness", "K_" + k + ".mtx"},
+                              {"damping", "C_" + k + ".mtx"},
+                              {"load", "f_" + k + ".mtx"}});
   }
   out.report = {
       {"scene", scene.source},
@@ -151,7 +150,8 @@ void WriteSystemMatrices(const SystemMatrices& m, const std::string& dir) {
                   FormatMatrixMarket(m.mean.damping, "geardyn mean C [N·s/m…] of " + source));
   WriteOutputFile(dir, "K.mtx",
                   FormatMatrixMarket(m.mean.stiffness, "geardyn mean K [N/m…] of " + source));
-  WriteOutputFile(dir, "f.mtx", FormatMatrixMarket(m.mean_load, "geardyn mean f [N…] of " + source));
+  WriteOutputFile(dir, "f.mtx",
+                  FormatMatrixMarket(m.mean_load, "geardyn mean f [N…] of " + source));
   const SystemHarmonics& h = m.harmonics;
   for (int k = 1; k <= h.num_harmonics(); ++k) {
     const std::string s = std::to_string(k);

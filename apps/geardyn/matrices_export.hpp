@@ -32,8 +32,8 @@ struct SystemMatrices {
   /// K_m, C_m, f_m for m = 0 … H (empty when harmonics = 0). K_0 and C_0 are the θ-means of
   /// K(θ), C(θ): K_0 = K̄ for linear cores (slice cores: the all-loaded mean).
   SystemHarmonics harmonics;
-  std::vector<std::string> dof_names;   ///< (n) "<body>.<component>"
-  std::vector<std::string> dof_bodies;  ///< (n) body name
+  std::vector<std::string> dof_names;       ///< (n) "<body>.<component>"
+  std::vector<std::string> dof_bodies;      ///< (n) body name
   std::vector<std::string> dof_components;  ///< (n) "x", "y", "z", "θx", "θy", "θz"
   std::vector<std::string> dof_kinds;       ///< (n) DofKind names
   double mesh_frequency_hz = 0.0;           ///< the scene's first mesh frequency [Hz]

@@ -64,7 +64,6 @@ ModesRun RunModesAnalysis(const Scene& scene, const ModesSettings& settings,
   return run;
 }
 
-
 Command AddModesCommand(CLI::App& app) {
   auto opts = std::make_shared<ModesCommandOptions>();
   CLI::App* cmd = app.add_subcommand(

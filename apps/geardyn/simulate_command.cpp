@@ -186,8 +186,8 @@ HbOverlay ComputeOverlay(const SimulateOptions& o, const Scene& scene_t, double 
       std::vector<std::string> overrides = o.scene.overrides;
       overrides.insert(overrides.end(), extra.begin(), extra.end());
       const Scene variant = o.scene_text.empty()
-                                  ? LoadScene(o.scene.scene, overrides)
-                                  : ParseScene(o.scene_text, o.scene.scene, overrides);
+                                ? LoadScene(o.scene.scene, overrides)
+                                : ParseScene(o.scene_text, o.scene.scene, overrides);
       return BuildSceneSystem(AtTorque(variant, torque), so).model;
     };
     try {
@@ -322,8 +322,7 @@ std::vector<std::string> PreRunWarnings(const Scene& scene_t, const SystemModel&
 }
 
 int RunQuasiStatic(const SimulateOptions& o, const Scene& scene, const std::vector<double>& torques,
-                   std::string* text_out,
-                   std::ostream& out) {
+                   std::string* text_out, std::ostream& out) {
   nlohmann::json report = {{"scene", scene.source}, {"mode", "quasi_static"}};
   nlohmann::json runs = nlohmann::json::array();
   std::string text;

@@ -219,17 +219,16 @@ int RunChart(const ChartCommandOptions& opts, std::ostream& out, std::ostream& e
 }  // namespace
 
 ChartRun RunChartAnalysis(const std::string& scene, const std::string& scene_text,
-                          const std::vector<std::string>& overrides,
-                          const ChartRunSettings& opts, const std::string& out_dir,
-                          const ProgressLine& progress) {
+                          const std::vector<std::string>& overrides, const ChartRunSettings& opts,
+                          const std::string& out_dir, const ProgressLine& progress) {
   // The command line checks these with CLI11; the library API (Python) reaches here directly.
   GEARDYN_THROW_UNLESS(opts.threads >= 0, "--threads: must be >= 0, got " << opts.threads);
   GEARDYN_THROW_UNLESS(
       std::isfinite(opts.tolerance) && opts.tolerance > 0.0 && opts.tolerance < 1.0,
       "--tolerance: must be a finite number in (0, 1), got " << opts.tolerance);
-  GEARDYN_THROW_UNLESS(opts.boundary_tolerance >= 1e-15 && opts.boundary_tolerance <= 0.5,
-                       "--boundary-tolerance: must be in [1e-15, 0.5], got "
-                           << opts.boundary_tolerance);
+  GEARDYN_THROW_UNLESS(
+      opts.boundary_tolerance >= 1e-15 && opts.boundary_tolerance <= 0.5,
+      "--boundary-tolerance: must be in [1e-15, 0.5], got " << opts.boundary_tolerance);
   GEARDYN_THROW_UNLESS(opts.max_order >= 1 && opts.max_order <= 50,
                        "--max-order: must be in [1, 50], got " << opts.max_order);
   SceneChartSettings settings;
@@ -252,8 +251,8 @@ ChartRun RunChartAnalysis(const std::string& scene, const std::string& scene_tex
       const long decile = p.total > 0 ? 10 * p.done / p.total : 10;
       if (last->first == p.phase && decile <= last->second) return;
       *last = {p.phase, decile};
-      progress(std::string("stability-chart: ") + p.phase + " " + std::to_string(10 * decile) + " % (" +
-               std::to_string(p.done) + "/" + std::to_string(p.total) + " evaluations)\n");
+      progress(std::string("stability-chart: ") + p.phase + " " + std::to_string(10 * decile) +
+               " % (" + std::to_string(p.done) + "/" + std::to_string(p.total) + " evaluations)\n");
     };
   }
   ChartRun out;
@@ -270,7 +269,6 @@ ChartRun RunChartAnalysis(const std::string& scene, const std::string& scene_tex
   out.exit_code = out.run.chart.summary.ok() ? int{kExitOk} : int{kExitNumericalIssue};
   return out;
 }
-
 
 Command AddStabilityChartCommand(CLI::App& app) {
   auto opts = std::make_shared<ChartCommandOptions>();
@@ -302,7 +300,8 @@ Command AddStabilityChartCommand(CLI::App& app) {
                   "transition-curve bisection tolerance, a fraction of the axis span (default "
                   "1e-3: below a pixel of the SVG's 780-px frame)")
       ->check(CLI::Range(1e-15, 0.5));
-  cmd->add_option("--max-order", opts->settings.max_order, "largest resonance order k of the labels (3)")
+  cmd->add_option("--max-order", opts->settings.max_order,
+                  "largest resonance order k of the labels (3)")
       ->check(CLI::Range(1, 50));
   cmd->add_flag("--difference", opts->settings.difference,
                 "also label difference combinations (f_q - f_p)/k");

@@ -57,7 +57,7 @@ ChartAxisSpec ParseChartAxis(const std::string& option, const std::string& text)
 
 /// @brief Everything the chart needs besides the scene.
 struct SceneChartSettings {
-  std::string scene;                   ///< file or builtin:NAME (the name errors use)
+  std::string scene;  ///< file or builtin:NAME (the name errors use)
   /// The scene's TOML text when it is not read from `scene` (the Python package's scenes from
   /// a string or a dict); empty: LoadScene(scene).
   std::string scene_text;

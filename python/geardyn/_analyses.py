@@ -20,6 +20,7 @@ from . import _geardyn  # type: ignore[attr-defined]
 from ._results import (CompareResult, FloquetResult, HbResult, InfoResult, MeshResult,
                        MeshTable, ModesResult, SimulateResult, StabilityChartResult, Summary,
                        SystemMatrices)
+from ._results import _report
 from ._scene import Scene
 
 __all__ = ["info", "mesh", "modes", "floquet", "hb", "stability_chart", "system_matrices",
@@ -42,8 +43,15 @@ def _out(out_dir: str | os.PathLike[str] | None) -> str:
 
 
 def _run_fields(raw: dict[str, Any], summary: Summary | None = None) -> dict[str, Any]:
-    return {"report": raw["report"], "text": raw["text"], "exit_code": raw["exit_code"],
-            "summary": summary if summary is not None else Summary._from_cpp(raw["summary"])}
+    return {"report_source": raw["report"], "text": raw["text"], "exit_code": raw["exit_code"],
+            "summary": summary if summary is not None else Summary._from_cpp(raw["summary"]),
+            "cpp_wall_time_s": raw["cpp_wall_time_s"]}
+
+
+def _convert(raw: dict[str, Any]) -> dict[str, Any]:
+    """`raw` with its report converted to a dict (for the results built from the report)."""
+    raw["report"] = _report(raw["report"])
+    return raw["report"]
 
 
 def info(scene: SceneLike) -> InfoResult:
@@ -62,7 +70,7 @@ def mesh(scene: SceneLike, *, samples: float | None = None,
     """
     raw = _geardyn.mesh(_scene(scene).handle(), samples, cycles)
     tables = {t["name"]: MeshTable(**t) for t in raw["meshes"]}
-    return MeshResult(raw["report"], tables)
+    return MeshResult(_convert(raw), tables)
 
 
 def modes(scene: SceneLike, *, num_modes: int = 20, method: str = "auto", shapes: bool = False,
@@ -76,12 +84,11 @@ def modes(scene: SceneLike, *, num_modes: int = 20, method: str = "auto", shapes
         damped: also compute the damped complex modes (report["damped_modes"]).
     """
     raw = _geardyn.modes(_scene(scene).handle(), num_modes, method, shapes, damped, _out(out_dir))
-    labels = [m["label"] for m in raw["report"].get("modes", [])]
-    fields = {k: raw[k] for k in ("frequencies_hz", "eigenvalues", "shapes", "dof_names",
+    fields = {k: raw[k] for k in ("frequencies_hz", "eigenvalues", "shapes", "dof_names", "labels",
                                   "kinetic_fractions", "body_kinetic_fractions", "body_names",
                                   "strain_fractions", "strain_names", "modal_damping_ratios",
                                   "num_rigid_body_modes")}
-    return ModesResult(**_run_fields(raw), labels=labels, **fields)
+    return ModesResult(**_run_fields(raw), **fields)
 
 
 def floquet(scene: SceneLike, *, method: str = "auto", tolerance: float = 1e-10, nev: int = 6,
@@ -95,11 +102,10 @@ def floquet(scene: SceneLike, *, method: str = "auto", tolerance: float = 1e-10,
         nev: arpack_monodromy's number of largest multipliers.
     """
     raw = _geardyn.floquet(_scene(scene).handle(), method, tolerance, nev, _out(out_dir))
-    stable = raw["report"]["stable"]
-    fields = {k: raw[k] for k in ("multipliers", "exponents", "max_abs_multiplier",
+    fields = {k: raw[k] for k in ("multipliers", "exponents", "max_abs_multiplier", "stable",
                                   "stability_margin", "verdict", "marginal", "mesh_frequency_hz",
                                   "period_s", "period_meshes", "method_used")}
-    return FloquetResult(**_run_fields(raw), stable=stable, **fields)
+    return FloquetResult(**_run_fields(raw), **fields)
 
 
 def _frequency_spec(mesh_frequency: Any) -> str:
@@ -142,7 +148,7 @@ def hb(scene: SceneLike, *, mesh_frequency: str | float | Sequence[float] | None
     raw = _geardyn.hb(_scene(scene).handle(), _frequency_spec(mesh_frequency), harmonics or 0,
                       tolerance, linear, nonlinear, stability, monodromy_steps, branch_search,
                       _out(out_dir), progress)
-    report = raw["report"]
+    report = _convert(raw)
     points = report.get("points", [])
     names = list(report.get("meshes", [])) or sorted(
         {m["name"] for p in points for m in p.get("meshes", [])})
@@ -205,6 +211,7 @@ def stability_chart(scene: SceneLike, *, x: str | tuple[str, float, float, int],
     raw = _geardyn.stability_chart(s.source, text, list(s.overrides), _axis(x), _axis(y), threads,
                                    method, tolerance, boundary_tolerance, max_order, difference,
                                    curves, _out(out_dir), progress)
+    _convert(raw)
     nx, ny = len(raw["x"]), len(raw["y"])
     ok = raw["ok"].reshape(ny, nx).astype(bool)
     stable = raw["stable"].reshape(ny, nx).astype(float)
@@ -276,7 +283,7 @@ def simulate(scene: SceneLike, *, mesh_frequency: str | float | Sequence[float] 
                             torques, integrator, tolerance, steady_tolerance, max_periods,
                             record_periods, samples_per_period, max_step, threads, quasi_static,
                             full_period, overlay_hb, _out(out_dir), progress)
-    report = raw["report"]
+    report = _convert(raw)
     points = report.get("points", [])
     names = sorted({m["name"] for p in points for m in p.get("meshes", [])})
 
@@ -327,7 +334,7 @@ def compare(scene: SceneLike, *, levels: str | Sequence[str] | None = None,
                            num_modes, nonlinear_harmonics, branch_search, max_periods, threads,
                            match_contact, _axis(chart_x) if chart_x else "",
                            _axis(chart_y) if chart_y else "", _out(out_dir), progress)
-    report = raw["report"]
+    report = _convert(raw)
     runs = report.get("levels", [])
     names = [r["level"] for r in runs]
 

@@ -3,7 +3,8 @@
 Every array is a numpy copy owned by the result (it stays valid after the result, or the
 geardyn objects it came from, are gone). Every result carries ``report`` (the dict of the
 ``geardyn`` command's ``--json`` output for the same input), ``text`` (the command's text output),
-``summary`` and ``exit_code`` (the command's: 0 success, 1 a status other than success).
+``summary``, ``exit_code`` (the command's: 0 success, 1 a status other than success) and
+``cpp_wall_time_s`` (the C++ share of the call's time).
 Units are SI: Hz, m, rad, N, N·m, s.
 """
 
@@ -48,12 +49,31 @@ class Summary:
                    list(r.get("warnings", []) or []))
 
 
+def _report(source: Any) -> dict[str, Any]:
+    """A report dict from a C++ ReportHolder (converted once) or a dict."""
+    return source.to_python() if hasattr(source, "to_python") else source
+
+
 @dataclass(frozen=True)
 class _Run:
-    report: dict[str, Any]
+    # The C++ report, converted to a dict on first access of `report` (a report with mode
+    # shapes is thousands of numbers a caller of the arrays never reads).
+    report_source: Any = field(repr=False, compare=False)
     text: str
     summary: Summary
     exit_code: int
+    #: Seconds spent in the C++ library during the call; the rest of the call's wall time is the
+    #: Python layer (argument conversion, numpy copies, result objects).
+    cpp_wall_time_s: float
+
+    @property
+    def report(self) -> dict[str, Any]:
+        """The command's --json output for the same input, as a dict."""
+        cached = self.__dict__.get("_report_cache")
+        if cached is None:
+            cached = _report(self.report_source)
+            object.__setattr__(self, "_report_cache", cached)
+        return cached
 
     @property
     def ok(self) -> bool:
@@ -191,7 +211,7 @@ class MeshTable:
 
 @dataclass(frozen=True)
 class MeshResult:
-    """``geardyn mesh``: the sampled mesh parameters of every mesh."""
+    """``geardyn mesh``: the sampled mesh parameters of every mesh, and ``report`` (mesh.json)."""
 
     report: dict[str, Any]
     meshes: dict[str, MeshTable]

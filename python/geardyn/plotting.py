@@ -171,8 +171,7 @@ def plot_frequency_response(result: HbResult | SimulateResult, mesh: str | None 
             # One run of equal verdicts, joined to the next run's first point.
             run = slice(start, min(i + 1, len(ff)))
             style = "--" if kinds[start] == "unstable" else "-"
-            lines = ax.plot(ff[run], rr[run], style, color=colour,
-                            label=(label or name) if colour is None else None)
+            lines = ax.plot(ff[run], rr[run], style, color=colour)
             colour = lines[0].get_color()
             if kinds[start] == "unknown" and getattr(result, "nonlinear", False):
                 ax.plot(ff[start:i], rr[start:i], "o", mfc="none", color=colour)
@@ -188,5 +187,10 @@ def plot_frequency_response(result: HbResult | SimulateResult, mesh: str | None 
     ax.set_xlabel("mesh frequency [Hz]")
     ax.set_ylabel("RMS DTE [µm]" if unit == 1e-6 else f"RMS DTE [{unit:g} m]")
     ax.set_title("frequency response (dashed: unstable)")
-    ax.legend(loc="best", fontsize="small")
+    from matplotlib.lines import Line2D
+
+    handles = [Line2D([], [], color=colour, linestyle="-", label=label or name)]
+    if (np.asarray(stable) == 0.0).any():
+        handles.append(Line2D([], [], color=colour, linestyle="--", label="unstable"))
+    ax.legend(handles=handles, loc="best", fontsize="small")
     return ax

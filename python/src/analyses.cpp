@@ -28,9 +28,9 @@ py::array_t<double> Array(const std::vector<std::uint8_t>& v) {
   return a;
 }
 
-py::dict Common(const app::RunReport& run, const Summary& summary) {
+py::dict Common(app::RunReport& run, const Summary& summary) {
   py::dict d;
-  d["report"] = ToPython(run.report);
+  d["report"] = Hold(std::move(run.report));
   d["text"] = run.text;
   d["exit_code"] = run.exit_code;
   d["summary"] = summary;
@@ -45,12 +45,15 @@ py::dict Modes(const Scene& scene, int num_modes, const std::string& method, boo
   settings.shapes = shapes;
   settings.damped = damped;
   std::optional<app::ModesRun> run;
+  const auto start = std::chrono::steady_clock::now();
   {
     py::gil_scoped_release release;
     run.emplace(app::RunModesAnalysis(scene, settings, out_dir));
   }
+  const double cpp_time = SecondsSince(start);
   const ModalResult& r = run->result;
   py::dict d = Common(*run, r.summary);
+  d["cpp_wall_time_s"] = cpp_time;
   d["frequencies_hz"] = VectorX(r.frequencies_hz);
   d["eigenvalues"] = VectorX(r.eigenvalues);
   d["shapes"] = MatrixX(r.shapes);
@@ -61,6 +64,9 @@ py::dict Modes(const Scene& scene, int num_modes, const std::string& method, boo
   d["strain_fractions"] = MatrixX(r.strain_fractions);
   d["strain_names"] = r.strain_names;
   d["modal_damping_ratios"] = VectorX(r.modal_damping_ratios);
+  std::vector<std::string> labels;
+  for (ModeType t : r.labels) labels.emplace_back(ToString(t));
+  d["labels"] = labels;
   d["num_rigid_body_modes"] = r.num_rigid_body_modes;
   return d;
 }
@@ -72,12 +78,15 @@ py::dict Floquet(const Scene& scene, const std::string& method, double tolerance
   settings.tolerance = tolerance;
   settings.nev = nev;
   std::optional<app::FloquetRun> run;
+  const auto start = std::chrono::steady_clock::now();
   {
     py::gil_scoped_release release;
     run.emplace(app::RunFloquetAnalysis(scene, settings, out_dir));
   }
+  const double cpp_time = SecondsSince(start);
   const FloquetResult& r = run->result;
   py::dict d = Common(*run, r.summary);
+  d["cpp_wall_time_s"] = cpp_time;
   d["multipliers"] = VectorXc(r.multipliers);
   d["exponents"] = VectorXc(r.exponents);
   d["mesh_frequency_hz"] = run->mesh_frequency_hz;
@@ -86,6 +95,8 @@ py::dict Floquet(const Scene& scene, const std::string& method, double tolerance
   d["max_abs_multiplier"] = r.max_abs_multiplier;
   d["stability_margin"] = r.stability_margin;
   d["verdict"] = ToString(r.verdict);
+  d["stable"] = r.verdict == FloquetVerdict::kUndetermined ? py::object(py::none())
+                                                           : py::object(py::bool_(r.stable()));
   d["marginal"] = r.marginal;
   d["method_used"] = ToString(r.method_used);
   return d;
@@ -95,14 +106,17 @@ py::dict Hb(const Scene& scene, const app::HbRunSettings& settings, const std::s
             py::object progress) {
   PythonProgress sink(std::move(progress));
   std::optional<app::HbRun> run;
+  const auto start = std::chrono::steady_clock::now();
   {
     py::gil_scoped_release release;
     run.emplace(app::RunHbAnalysis(scene, settings, out_dir, sink.Line()));
   }
+  const double cpp_time = SecondsSince(start);
   sink.Rethrow();
   Summary summary;  // the report carries the statuses of the points and of the sweep
   summary.status = run->exit_code == 0 ? Status::kSuccess : Status::kNumericalIssue;
   py::dict d = Common(*run, summary);
+  d["cpp_wall_time_s"] = cpp_time;
   d["nonlinear"] = run->nonlinear;
   return d;
 }
@@ -112,13 +126,16 @@ py::dict Chart(const std::string& source, const std::string& text,
                const std::string& out_dir, py::object progress) {
   PythonProgress sink(std::move(progress));
   std::optional<app::ChartRun> run;
+  const auto start = std::chrono::steady_clock::now();
   {
     py::gil_scoped_release release;
     run.emplace(app::RunChartAnalysis(source, text, overrides, settings, out_dir, sink.Line()));
   }
+  const double cpp_time = SecondsSince(start);
   sink.Rethrow();
   const StabilityChartResult& c = run->run.chart;
   py::dict d = Common(*run, c.summary);
+  d["cpp_wall_time_s"] = cpp_time;
   std::vector<double> x, y;
   for (int i = 0; i < c.x_axis.num_points; ++i) x.push_back(c.x_axis.Value(i));
   for (int i = 0; i < c.y_axis.num_points; ++i) y.push_back(c.y_axis.Value(i));
@@ -155,7 +172,7 @@ py::dict Mesh(const Scene& scene, std::optional<double> samples, std::optional<d
     report = app::MakeMeshReport(scene, options, &tables);
   }
   py::dict d;
-  d["report"] = ToPython(report);
+  d["report"] = Hold(std::move(report));
   py::list meshes;
   for (const app::MeshSamples& s : tables) {
     py::dict t;
@@ -183,9 +200,8 @@ void BindAnalyses(py::module_& m) {
   m.def(
       "hb",
       [](const Scene& scene, const std::string& mesh_frequency, int harmonics,
-         std::optional<double> tolerance, bool linear, bool nonlinear,
-         const std::string& stability, int monodromy_steps, int branch_search,
-         const std::string& out_dir, py::object progress) {
+         std::optional<double> tolerance, bool linear, bool nonlinear, const std::string& stability,
+         int monodromy_steps, int branch_search, const std::string& out_dir, py::object progress) {
         app::HbRunSettings s;
         s.settings.mesh_frequency = mesh_frequency;
         s.settings.harmonics = harmonics;

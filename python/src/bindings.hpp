@@ -3,8 +3,10 @@
 
 #include <pybind11/pybind11.h>
 
+#include <chrono>
 #include <exception>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -15,8 +17,16 @@ namespace geardyn::python {
 
 namespace py = pybind11;
 
-/// The report JSON as a Python object (json.loads of its text: dict, list, float, None).
+/// The report JSON as a Python object (dict, list, float, int, str, bool, None).
 py::object ToPython(const nlohmann::json& j);
+
+/// A report kept as C++ JSON until Python asks for it (ReportHolder.to_python): a modes report
+/// with shapes of a 108-DOF system is ≈ 12 000 numbers, 2 ms of conversion (7 % of the run)
+/// that a caller reading only the arrays never needs (docs/benchmarks.md "Python package").
+struct ReportHolder {
+  std::shared_ptr<const nlohmann::json> json;
+};
+py::object Hold(nlohmann::json report);
 
 /// @brief A ProgressLine that calls a Python callable (or nothing when it is None) with the GIL
 /// held. An exception the callable raises stops further calls; Rethrow() raises it after the run.
@@ -32,6 +42,11 @@ class PythonProgress {
   std::mutex mutex_;
   std::exception_ptr error_;
 };
+
+/// Wall-clock seconds since `start` (the C++ share of a call: results' cpp_wall_time_s).
+inline double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 void BindErrors(py::module_& m);
 void BindScene(py::module_& m);

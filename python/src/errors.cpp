@@ -1,8 +1,9 @@
 // C++ exceptions as Python exceptions, with the C++ message as their text:
 // InvalidInput → geardyn.InputError (a ValueError), SceneError → geardyn.SceneError (an
 // InputError with .source, .line, .key, .reason), InternalError → geardyn.InternalError.
-#include "bindings.hpp"
 #include "geardyn/common/errors.hpp"
+
+#include "bindings.hpp"
 #include "geardyn/models/scene/scene_reader.hpp"
 
 namespace geardyn::python {

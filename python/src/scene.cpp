@@ -22,7 +22,8 @@ void BindScene(py::module_& m) {
                                for (const auto& mesh : s.meshes) names.push_back(mesh.name);
                                return names;
                              })
-      .def_property_readonly("is_oscillator", [](const Scene& s) { return s.oscillator.has_value(); });
+      .def_property_readonly("is_oscillator",
+                             [](const Scene& s) { return s.oscillator.has_value(); });
   m.def(
       "load_scene",
       [](const std::string& path_or_builtin, const std::vector<std::string>& overrides) {

@@ -1,8 +1,9 @@
 // geardyn::Summary in Python (status name, message, error estimate, counters, time, warnings).
+#include "geardyn/common/summary.hpp"
+
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
-#include "geardyn/common/summary.hpp"
 
 namespace geardyn::python {
 
@@ -17,8 +18,8 @@ void BindSummary(py::module_& m) {
       .def_property_readonly("ok", &Summary::ok)
       .def("brief_report", &Summary::BriefReport)
       .def("__repr__", [](const Summary& s) {
-        return std::string("Summary(status='") + StatusName(s.status) + "', message='" +
-               s.message + "')";
+        return std::string("Summary(status='") + StatusName(s.status) + "', message='" + s.message +
+               "')";
       });
 }
 

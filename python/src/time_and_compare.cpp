@@ -12,9 +12,9 @@
 namespace geardyn::python {
 namespace {
 
-py::dict Report(const app::RunReport& run) {
+py::dict Report(app::RunReport& run) {
   py::dict d;
-  d["report"] = ToPython(run.report);
+  d["report"] = Hold(std::move(run.report));
   d["text"] = run.text;
   d["exit_code"] = run.exit_code;
   return d;
@@ -50,12 +50,15 @@ void BindTimeAndCompare(py::module_& m) {
         s.progress = !progress.is_none();
         PythonProgress sink(std::move(progress));
         std::optional<app::SimulateRun> run;
+        const auto start = std::chrono::steady_clock::now();
         {
           py::gil_scoped_release release;
           run.emplace(app::RunSimulateAnalysis(scene, scene_text, s, out_dir, sink.Line()));
         }
+        const double cpp_time = SecondsSince(start);
         sink.Rethrow();
         py::dict d = Report(*run);
+        d["cpp_wall_time_s"] = cpp_time;
         py::dict histories;
         if (run->history) {
           const TimeResponse& r = *run->history;
@@ -71,11 +74,10 @@ void BindTimeAndCompare(py::module_& m) {
         return d;
       },
       py::arg("scene"), py::arg("scene_text"), py::arg("mesh_frequency"), py::arg("sweep"),
-      py::arg("torques"), py::arg("integrator"), py::arg("tolerance"),
-      py::arg("steady_tolerance"), py::arg("max_periods"), py::arg("record_periods"),
-      py::arg("samples_per_period"), py::arg("max_step"), py::arg("threads"),
-      py::arg("quasi_static"), py::arg("full_period"), py::arg("overlay_hb"), py::arg("out_dir"),
-      py::arg("progress"));
+      py::arg("torques"), py::arg("integrator"), py::arg("tolerance"), py::arg("steady_tolerance"),
+      py::arg("max_periods"), py::arg("record_periods"), py::arg("samples_per_period"),
+      py::arg("max_step"), py::arg("threads"), py::arg("quasi_static"), py::arg("full_period"),
+      py::arg("overlay_hb"), py::arg("out_dir"), py::arg("progress"));
   m.def(
       "compare",
       [](const Scene& scene, const std::string& scene_text,
@@ -106,13 +108,17 @@ void BindTimeAndCompare(py::module_& m) {
         s.progress = !progress.is_none();
         PythonProgress sink(std::move(progress));
         std::optional<app::CompareRun> run;
+        const auto start = std::chrono::steady_clock::now();
         {
           py::gil_scoped_release release;
           app::ProgressStream err(sink.Line());
           run.emplace(app::RunCompareAnalysis(scene, s, out_dir, &err));
         }
+        const double cpp_time = SecondsSince(start);
         sink.Rethrow();
-        return Report(*run);
+        py::dict d = Report(*run);
+        d["cpp_wall_time_s"] = cpp_time;
+        return d;
       },
       py::arg("scene"), py::arg("scene_text"), py::arg("overrides"), py::arg("levels"),
       py::arg("analyses"), py::arg("reference"), py::arg("mesh"), py::arg("mesh_frequency"),

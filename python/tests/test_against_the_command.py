@@ -51,6 +51,17 @@ def test_floquet(scene, extra):
     assert py.max_abs_multiplier == pytest.approx(cli["max_abs_multiplier"], rel=1e-15)
 
 
+def test_an_undetermined_floquet_verdict_is_reported_as_the_command_reports_it():
+    # 1 rpm: Magnus would need more than 65 536 steps per period; the multipliers are NaN.
+    over = ["operating_point.speed_rpm=1"]
+    py = geardyn.floquet(geardyn.Scene.builtin("helical-pair", over))
+    cli = cli_json("floquet", PAIR, *sets(over))
+    assert_same(py.report, cli)  # null, not NaN, in the report
+    assert py.report["max_abs_multiplier"] is None and py.stable is None
+    assert py.verdict == "undetermined" and py.exit_code == cli["_exit_code"] == 1
+    assert py.summary.status == "numerical_issue" and np.isnan(py.max_abs_multiplier)
+
+
 def test_floquet_method_options_reach_the_library():
     py = geardyn.floquet(RIG, method="hill", tolerance=1e-8)
     cli = cli_json("floquet", RIG, "--method", "hill", "--tolerance", "1e-8")

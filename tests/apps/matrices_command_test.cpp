@@ -84,8 +84,8 @@ TEST(MatricesCommand, DofMapNamesEveryRowAndItsUnit) {
     const nlohmann::json& d = j["dofs"][i];
     EXPECT_EQ(d["name"].get<std::string>(), map.dof_name(i));
     EXPECT_EQ(d["body"].get<std::string>(), map.body_name(map.dof_body(i)));
-    const bool rotation = map.dof_kind(i) == DofKind::kRotationAxial ||
-                          map.dof_kind(i) == DofKind::kRotationTilt;
+    const bool rotation =
+        map.dof_kind(i) == DofKind::kRotationAxial || map.dof_kind(i) == DofKind::kRotationTilt;
     EXPECT_EQ(d["unit"].get<std::string>(), rotation ? "rad" : "m") << d.dump();
   }
 }
@@ -104,8 +104,8 @@ TEST(MatricesCommand, HarmonicsEqualAQuadratureOfTheAssembledStiffness) {
   const double scale = MatrixX(x.mean.stiffness).norm();
   EXPECT_LT((MatrixX(x.mean.stiffness) - x.harmonics.stiffness[0].real()).norm(), 1e-12 * scale);
   constexpr int kSamples = 4096;
-  std::vector<MatrixXc> quadrature(5, MatrixXc::Zero(x.mean.stiffness.rows(),
-                                                     x.mean.stiffness.cols()));
+  std::vector<MatrixXc> quadrature(
+      5, MatrixXc::Zero(x.mean.stiffness.rows(), x.mean.stiffness.cols()));
   for (int j = 0; j < kSamples; ++j) {
     const double theta = 2.0 * std::numbers::pi * p * j / kSamples;
     const MatrixX& k = AssembleStiffness(built.model, ws, theta);
