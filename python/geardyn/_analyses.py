@@ -87,7 +87,7 @@ def modes(scene: SceneLike, *, num_modes: int = 20, method: str = "auto", shapes
     fields = {k: raw[k] for k in ("frequencies_hz", "eigenvalues", "shapes", "dof_names", "labels",
                                   "kinetic_fractions", "body_kinetic_fractions", "body_names",
                                   "strain_fractions", "strain_names", "modal_damping_ratios",
-                                  "num_rigid_body_modes")}
+                                  "num_rigid_body_modes", "method_used")}
     return ModesResult(**_run_fields(raw), **fields)
 
 

@@ -34,6 +34,7 @@ class Summary:
 
     @property
     def ok(self) -> bool:
+        """True when the status is "success"."""
         return self.status == "success"
 
     @classmethod
@@ -82,6 +83,7 @@ class _Run:
 
     @property
     def warnings(self) -> list[str]:
+        """The report's warnings (the scene's, prefixed "scene: ", and the analysis')."""
         return list(self.report.get("warnings", []))
 
 
@@ -106,6 +108,7 @@ class ModesResult(_Run):
         kinetic_fractions: (m, 4) kinetic energy per DOF kind.
         strain_fractions: (m, s) strain energy per owner (columns ``strain_names``).
         modal_damping_ratios: (m,) ζ_k, empty without damping.
+        method_used: "dense" or "arpack".
     """
 
     frequencies_hz: np.ndarray
@@ -120,6 +123,7 @@ class ModesResult(_Run):
     strain_names: list[str]
     modal_damping_ratios: np.ndarray
     num_rigid_body_modes: int
+    method_used: str
 
 
 @dataclass(frozen=True)
@@ -238,10 +242,12 @@ class SystemMatrices:
 
     @property
     def dofs(self) -> list[dict[str, Any]]:
+        """Per DOF: index, name, body, component, kind and unit ("m" or "rad")."""
         return list(self.report["dofs"])
 
     @property
     def period_meshes(self) -> int:
+        """P: harmonic m of the expansion is at m/P times the mesh frequency."""
         return int(self.report["period_meshes"])
 
 

@@ -186,6 +186,7 @@ class Scene:
 
     @property
     def title(self) -> str:
+        """The scene's free-text title (may be empty)."""
         return self.handle().title
 
     @property
@@ -196,6 +197,7 @@ class Scene:
 
     @property
     def mesh_names(self) -> list[str]:
+        """The meshes' names, in scene order (the keys of the results' per-mesh dicts)."""
         return list(self.handle().mesh_names)
 
     def handle(self) -> Any:
@@ -209,6 +211,7 @@ class Scene:
         return self._handle
 
     def __getstate__(self) -> dict[str, Any]:
+        """The recipe only: the C++ scene is parsed again where it is unpickled."""
         return {"source": self._source, "text": self._text, "overrides": self._overrides}
 
     def __setstate__(self, state: dict[str, Any]) -> None:

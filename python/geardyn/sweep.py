@@ -49,6 +49,22 @@ def _finite(v: Any) -> Any:
     return v
 
 
+def _plain(value: Any) -> Any:
+    """A row value as plain JSON data: numpy scalars and arrays as Python numbers and lists,
+    non-finite floats as None (a row from a user's function may hold any of them)."""
+    if isinstance(value, dict):
+        return {str(k): _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if hasattr(value, "tolist"):  # numpy arrays and scalars
+        return _plain(value.tolist())
+    if isinstance(value, float):
+        return _finite(value)
+    if value is None or isinstance(value, (bool, int, str)):
+        return value
+    return str(value)
+
+
 def summarize(analysis: str, result: Any) -> dict[str, Any]:
     """The scalar row a sweep keeps of one analysis result (status, and per analysis:
     modes → f_0 … f_{m−1} [Hz]; floquet → max|λ|, verdict, stable; hb → per mesh the largest
@@ -97,7 +113,7 @@ def run_variant(scene: Scene, overrides: Mapping[str, Any], analysis: str | Call
     try:
         variant = scene.with_overrides(dict(overrides))
         if callable(analysis):
-            row = dict(analysis(variant, **(options or {})))
+            row = _plain(dict(analysis(variant, **(options or {}))))
         else:
             function = getattr(_analyses, analysis, None)
             if function is None or analysis.startswith("_"):
@@ -128,6 +144,7 @@ class SweepResult:
 
     @property
     def records(self) -> list[dict[str, Any]]:
+        """One dict per variant: its override values, then its row."""
         return [{**v, **r} for v, r in zip(self.variants, self.rows)]
 
     @property
@@ -138,6 +155,7 @@ class SweepResult:
 
     @property
     def table(self) -> Any:
+        """The records as a pandas DataFrame (the list of dicts without pandas)."""
         try:
             import pandas as pd
         except ImportError:
@@ -224,9 +242,8 @@ def sweep(scene: Scene | str, variants: Iterable[Variant], analysis: str | Calla
                 row = {"status": "error", "error": f"{type(e).__name__}: {e}"}
             rows[i] = row
             if sink:
-                sink.write(json.dumps({"key": keys[i], "variant": {k: toml_value(v) for k, v in
-                                                                   variants[i].items()},
-                                       "row": row}, allow_nan=False, default=str) + "\n")
+                entry = {"key": keys[i], "variant": _plain(variants[i]), "row": _plain(row)}
+                sink.write(json.dumps(entry, allow_nan=False) + "\n")
                 sink.flush()
             finished += 1
             if progress:

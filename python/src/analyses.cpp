@@ -68,6 +68,7 @@ py::dict Modes(const Scene& scene, int num_modes, const std::string& method, boo
   for (ModeType t : r.labels) labels.emplace_back(ToString(t));
   d["labels"] = labels;
   d["num_rigid_body_modes"] = r.num_rigid_body_modes;
+  d["method_used"] = ToString(r.method_used);
   return d;
 }
 

@@ -34,12 +34,12 @@ py::object ToPython(const nlohmann::json& j) {
       py::list list(j.size());
       std::size_t i = 0;
       for (const nlohmann::json& v : j) list[i++] = ToPython(v);
-      return std::move(list);
+      return py::object(std::move(list));
     }
     case nlohmann::json::value_t::object: {
       py::dict dict;
       for (auto it = j.begin(); it != j.end(); ++it) dict[py::str(it.key())] = ToPython(it.value());
-      return std::move(dict);
+      return py::object(std::move(dict));
     }
     case nlohmann::json::value_t::binary:
       break;

@@ -33,7 +33,7 @@ def test_modes(scene):
     np.testing.assert_array_equal(py.shapes, np.array(cli["shapes"]).T)
     assert py.labels == [m["label"] for m in cli["modes"]]
     assert py.dof_names == cli["dof_names"]
-    assert py.summary.status == cli["status"]
+    assert py.summary.status == cli["status"] and py.method_used == cli["method_used"]
     text = run_cli("modes", scene, "--modes", "10", "--shapes", "--damped").stdout
     assert py.text == text
 

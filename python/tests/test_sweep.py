@@ -135,3 +135,22 @@ def test_progress_counts_every_variant():
         geardyn.sweep(BASE, geardyn.grid({"gear.pinion.mass": [2.0, 3.0, 4.0]}), "modes",
                       executor=pool, progress=lambda done, total: seen.append((done, total)))
     assert sorted(seen) == [(1, 3), (2, 3), (3, 3)]
+
+
+def numpy_row(scene):
+    """A user analysis returning numpy values and a NaN (the results file must still be JSON)."""
+    f = geardyn.modes(scene, num_modes=3).frequencies_hz
+    return {"f": f[1:], "n": np.int64(3), "missing": float("nan")}
+
+
+def test_user_rows_with_numpy_values_and_nan_are_written_and_resumed(tmp_path):
+    results = tmp_path / "sweep.jsonl"
+    variants = [{"gear.pinion.mass": 3.0}]
+    with cf.ThreadPoolExecutor(1) as pool:
+        first = geardyn.sweep(BASE, variants, numpy_row, executor=pool, results_file=results)
+        again = geardyn.sweep(BASE, variants, numpy_row, executor=pool, results_file=results)
+    assert again.resumed == 1
+    assert first.rows[0]["missing"] is None and first.rows[0]["n"] == 3
+    assert again.rows[0]["f"] == first.rows[0]["f"] and len(first.rows[0]["f"]) == 2
+    for line in results.read_text().splitlines():
+        json.loads(line)  # strict JSON: no NaN
