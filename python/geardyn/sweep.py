@@ -6,6 +6,11 @@
 >>> result = geardyn.sweep(base, variants, "modes")         # a local process pool
 >>> result.table                                            # one row per variant (pandas)
 
+The default local process pool starts its workers with ``spawn``: in a script, call sweep under
+``if __name__ == "__main__":`` (a REPL or a notebook needs nothing). A
+``concurrent.futures.ThreadPoolExecutor`` works as well (the C++ library releases the GIL and is
+thread-safe; a crash in one variant then takes the whole process, not one worker).
+
 On a cluster, pass a Dask ``distributed.Client`` (or its ``get_executor()``) as ``executor``:
 the same variants run on its workers, nothing else changes (docs/python.md). geardyn has no
 scheduler of its own: the executor distributes, geardyn computes one variant per task.
@@ -253,5 +258,15 @@ def sweep(scene: Scene | str, variants: Iterable[Variant], analysis: str | Calla
             sink.close()
         if own and executor is not None:
             executor.shutdown(wait=True, cancel_futures=True)
+    if own and todo and all((rows[i] or {}).get("error", "") and
+                            str(rows[i]["error"]).startswith("BrokenProcessPool") for i in todo):
+        # Nothing ran: the usual cause is a script without the main guard, whose spawned
+        # workers re-run it and fail while starting.
+        raise RuntimeError(
+            "geardyn.sweep: the local process pool's workers could not start (BrokenProcessPool). "
+            "A script that calls geardyn.sweep without executor= must do so under "
+            "`if __name__ == \"__main__\":` (the spawn start method imports the script in every "
+            "worker); or pass executor=concurrent.futures.ThreadPoolExecutor(n) (the C++ "
+            "library runs without the GIL and is thread-safe)")
     return SweepResult(variants, [r if r is not None else {} for r in rows],
                        time.perf_counter() - start, resumed)

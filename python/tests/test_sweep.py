@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import geardyn
+from geardyn.sweep import summarize
 
 BASE = "builtin:kahraman-blankenship-rig"
 AXES = {"gear.pinion.mass": [2.5, 3.0, 3.5], "mesh.pinion-wheel.center_distance": [0.150, 0.1502]}
@@ -154,3 +155,39 @@ def test_user_rows_with_numpy_values_and_nan_are_written_and_resumed(tmp_path):
     assert again.rows[0]["f"] == first.rows[0]["f"] and len(first.rows[0]["f"]) == 2
     for line in results.read_text().splitlines():
         json.loads(line)  # strict JSON: no NaN
+
+
+def test_a_thread_pool_gives_the_serial_result_for_every_analysis_at_once():
+    # The C++ library runs without the GIL: several analyses at once in threads must not share
+    # state (FFTW plans and ARPACK are locked; everything else is per call).
+    base = geardyn.Scene.builtin("kahraman-blankenship-rig")
+    variants = geardyn.grid({"gear.pinion.mass": [2.5, 3.0, 3.5, 4.0]})
+    calls = [("modes", {"num_modes": 6}), ("floquet", {}),
+             ("hb", {"mesh_frequency": (2000, 3000, 6), "harmonics": 8})]
+    with cf.ThreadPoolExecutor(4) as pool:
+        futures = [(a, o, geardyn.sweep(base, variants, a, options=o, executor=pool))
+                   for a, o in calls]
+    for analysis, options, result in futures:
+        serial = [summarize(analysis, getattr(geardyn, analysis)(
+            base.with_overrides(v), **options)) for v in variants]
+        for got, want in zip(result.rows, serial):
+            for key, value in want.items():
+                if key not in ("wall_time_s",):
+                    assert got[key] == value, (analysis, key)
+
+
+def test_a_script_without_the_main_guard_gets_a_clear_error(tmp_path):
+    import os
+    import subprocess
+    import sys
+
+    script = tmp_path / "unguarded.py"
+    script.write_text("import geardyn\n"
+                      "geardyn.sweep('builtin:helical-pair', [{}, {}], 'modes', max_workers=1)\n")
+    from pathlib import Path
+
+    env = dict(os.environ, PYTHONPATH=str(Path(geardyn.__file__).resolve().parents[1]))
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, env=env,
+                          cwd=tmp_path, timeout=120)
+    assert done.returncode != 0
+    assert 'if __name__ == "__main__":' in done.stderr.splitlines()[-1]
