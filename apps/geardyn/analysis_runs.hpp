@@ -131,8 +131,8 @@ struct SimulateSettings {
 };
 
 /// `geardyn simulate`: time integration to steady state (one speed, several, sweeps) or the
-/// quasi-static export. Writes the command's files to `out_dir` unless empty; progress and the
-/// pre-run warnings go to `progress` (they are in the report's warnings too). exit_code as the
+/// quasi-static export. Writes the command's files to `out_dir` unless empty; the progress lines
+/// go to `progress` (the pre-run warnings only to the report's warnings). exit_code as the
 /// command's (130 when interrupted). `scene_text`: the scene's TOML text when it was not read
 /// from scene.source (empty: the --overlay-hb matching reloads scene.source).
 struct SimulateRun : RunReport {

@@ -273,7 +273,8 @@ def simulate(scene: SceneLike, *, mesh_frequency: str | float | Sequence[float] 
         torque: mean torque(s) [N·m] (default: the scene's).
         integrator: "auto", "runge_kutta", "generalized_alpha", ... (``geardyn simulate --help``).
         quasi_static: export the loaded K(θ) and STE as a mesh-parameter table instead.
-        progress: called with each progress line and the pre-run warnings.
+        progress: called with each progress line (the pre-run warnings, e.g. a speed too low
+            for the highest mode, are in ``warnings``).
     Defaults of the numeric options are the command's.
     """
     s = _scene(scene)
