@@ -142,8 +142,8 @@ def plot_stability_chart(chart: StabilityChartResult, ax: Any = None,
 
 def plot_frequency_response(result: HbResult | SimulateResult, mesh: str | None = None,
                             ax: Any = None, unit: float = 1e-6, label: str | None = None) -> Any:
-    """RMS DTE against mesh frequency: stable parts solid, unstable parts dashed, undetermined
-    points as open circles, each traced segment (and each branch) a separate line, and the jumps
+    """RMS DTE against mesh frequency: stable parts solid, unstable parts dashed, points without a
+    verdict (undetermined, or stability="none") dotted, each traced segment (and each branch) a separate line, and the jumps
     of a nonlinear trace as vertical arrows. ``unit`` scales the DTE (1e-6: µm)."""
     ax = _axes(ax)
     name = mesh or next(iter(result.rms_dte_m), None)
@@ -151,7 +151,9 @@ def plot_frequency_response(result: HbResult | SimulateResult, mesh: str | None 
         return ax
     f = np.asarray(result.mesh_frequency_hz)
     rms = np.asarray(result.rms_dte_m[name]) / unit
-    stable = getattr(result, "stable", np.full(len(f), math.nan))
+    # A time-domain point is a response the integration reached (no verdict to draw); an HB point
+    # without a verdict (undetermined, or stability="none") is dotted, never drawn as stable.
+    stable = getattr(result, "stable", np.ones(len(f)))
     segment = getattr(result, "segment", np.zeros(len(f), dtype=int))
     branch = getattr(result, "branch", np.zeros(len(f), dtype=int))
     group = [f"{b}/{s}" for b, s in zip(branch, segment)]
@@ -170,11 +172,9 @@ def plot_frequency_response(result: HbResult | SimulateResult, mesh: str | None 
                 continue
             # One run of equal verdicts, joined to the next run's first point.
             run = slice(start, min(i + 1, len(ff)))
-            style = "--" if kinds[start] == "unstable" else "-"
+            style = {"stable": "-", "unstable": "--", "unknown": ":"}[kinds[start]]
             lines = ax.plot(ff[run], rr[run], style, color=colour)
             colour = lines[0].get_color()
-            if kinds[start] == "unknown" and getattr(result, "nonlinear", False):
-                ax.plot(ff[start:i], rr[start:i], "o", mfc="none", color=colour)
             start = i
     for jump in getattr(result, "jumps", []) or []:
         fj = jump.get("mesh_frequency_hz")
@@ -186,11 +186,13 @@ def plot_frequency_response(result: HbResult | SimulateResult, mesh: str | None 
             ax.axvline(fj, color=colour, linestyle=":", linewidth=0.8)
     ax.set_xlabel("mesh frequency [Hz]")
     ax.set_ylabel("RMS DTE [µm]" if unit == 1e-6 else f"RMS DTE [{unit:g} m]")
-    ax.set_title("frequency response (dashed: unstable)")
+    ax.set_title("frequency response (dashed: unstable, dotted: no verdict)")
     from matplotlib.lines import Line2D
 
     handles = [Line2D([], [], color=colour, linestyle="-", label=label or name)]
     if (np.asarray(stable) == 0.0).any():
         handles.append(Line2D([], [], color=colour, linestyle="--", label="unstable"))
+    if np.isnan(np.asarray(stable, dtype=float)).any():
+        handles.append(Line2D([], [], color=colour, linestyle=":", label="no verdict"))
     ax.legend(handles=handles, loc="best", fontsize="small")
     return ax

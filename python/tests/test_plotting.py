@@ -57,3 +57,12 @@ def test_frequency_response_dashes_the_unstable_points():
     drawn = sum(len(line.get_xdata()) for line in ax.get_lines())
     assert drawn >= len(hb.mesh_frequency_hz)
     plt.close("all")
+
+
+def test_points_without_a_verdict_are_never_drawn_as_stable():
+    hb = geardyn.hb("builtin:kahraman-blankenship-rig", mesh_frequency=(2000, 3400, 6),
+                    harmonics=16, stability="none")
+    assert np.isnan(hb.stable).all()
+    ax = plotting.plot_frequency_response(hb)
+    assert {line.get_linestyle() for line in ax.get_lines()} == {":"}
+    plt.close("all")
