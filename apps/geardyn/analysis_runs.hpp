@@ -14,10 +14,12 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "geardyn/analyses/campbell.hpp"
 #include "geardyn/analyses/floquet.hpp"
 #include "geardyn/analyses/modal.hpp"
 #include "geardyn/analyses/system_nonlinear_hb.hpp"
 #include "geardyn/analyses/time_response.hpp"
+#include "geardyn/campbell_report.hpp"
 #include "geardyn/compare_runner.hpp"
 #include "geardyn/hb_report.hpp"
 #include "geardyn/models/scene/scene.hpp"
@@ -43,6 +45,15 @@ struct ModesRun : RunReport {
 };
 ModesRun RunModesAnalysis(const Scene& scene, const ModesSettings& settings,
                           const std::string& out_dir = {});
+
+/// `geardyn campbell`: the modes of the speed-dependent mean system over a speed grid, tracked,
+/// with the excitation orders, crossings and instabilities (campbell_report.hpp). Writes
+/// campbell.json, campbell.csv, crossings.csv and campbell.svg to `out_dir` unless it is empty.
+struct CampbellRun : RunReport {
+  CampbellResult result;
+};
+CampbellRun RunCampbellAnalysis(const Scene& scene, const CampbellSettings& settings,
+                                const std::string& out_dir = {});
 
 /// The settings of `geardyn floquet`.
 struct FloquetSettings {

@@ -57,5 +57,6 @@ Command AddStabilityChartCommand(CLI::App& app);
 Command AddSimulateCommand(CLI::App& app);
 Command AddCompareCommand(CLI::App& app);
 Command AddMatricesCommand(CLI::App& app);
+Command AddCampbellCommand(CLI::App& app);
 
 }  // namespace geardyn::app

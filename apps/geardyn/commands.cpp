@@ -45,7 +45,7 @@ const std::vector<CommandFactory>& CommandFactories() {
   static const std::vector<CommandFactory> factories = {
       &AddInfoCommand,    &AddScenesCommand,         &AddMeshCommand, &AddModesCommand,
       &AddFloquetCommand, &AddStabilityChartCommand, &AddHbCommand,   &AddSimulateCommand,
-      &AddCompareCommand, &AddMatricesCommand,
+      &AddCompareCommand, &AddMatricesCommand, &AddCampbellCommand,
   };
   return factories;
 }
