@@ -42,9 +42,9 @@ std::vector<double> ParseSpeedRange(const std::string& spec, const char* flag) {
                        flag << ": lo must be a finite speed >= 0 [rpm], got " << lo);
   GEARDYN_THROW_UNLESS(std::isfinite(hi) && hi > lo,
                        flag << ": hi must be a finite speed > lo = " << lo << " [rpm], got " << hi);
-  GEARDYN_THROW_UNLESS(count >= 2.0 && count <= kMaxCampbellSpeeds && count == std::floor(count),
-                       flag << ": n must be an integer in 2 … " << kMaxCampbellSpeeds << ", got "
-                            << count);
+  GEARDYN_THROW_UNLESS(
+      count >= 2.0 && count <= kMaxCampbellSpeeds && count == std::floor(count),
+      flag << ": n must be an integer in 2 … " << kMaxCampbellSpeeds << ", got " << count);
   const int n = static_cast<int>(count);
   std::vector<double> out(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) out[static_cast<std::size_t>(i)] = lo + (hi - lo) * i / (n - 1);
@@ -104,7 +104,8 @@ CampbellSweep MakeCampbellSweep(const Scene& scene, const CampbellSettings& sett
     }
   }
   sweep.rpm_per_reference = factor / kRadPerSecPerRpm;
-  for (double rpm : sweep.values_rpm) sweep.reference_speeds.push_back(rpm / sweep.rpm_per_reference);
+  for (double rpm : sweep.values_rpm)
+    sweep.reference_speeds.push_back(rpm / sweep.rpm_per_reference);
   return sweep;
 }
 
@@ -191,21 +192,24 @@ json MakeCampbellReport(const std::string& scene_source, const CampbellSweep& sw
   for (const CampbellCrossing& c : result.crossings) {
     const auto it = index_of.find(c.track);
     if (it == index_of.end()) continue;
-    crossings.push_back({{"track", it->second},
-                         {"label", tracks[static_cast<std::size_t>(it->second)].value(
-                                       "planetary_label",
-                                       tracks[static_cast<std::size_t>(it->second)]["label"]
-                                           .get<std::string>())},
-                         {"excitation", excitations[static_cast<std::size_t>(c.excitation)].name},
-                         {"speed_rpm", c.speed * to_rpm},
-                         {"frequency_hz", c.frequency_hz}});
+    crossings.push_back(
+        {{"track", it->second},
+         {"label", tracks[static_cast<std::size_t>(it->second)].value(
+                       "planetary_label",
+                       tracks[static_cast<std::size_t>(it->second)]["label"].get<std::string>())},
+         {"excitation", excitations[static_cast<std::size_t>(c.excitation)].name},
+         {"speed_rpm", c.speed * to_rpm},
+         {"frequency_hz", c.frequency_hz}});
   }
   report["crossings"] = crossings;
   json instabilities = json::array();
   for (const CampbellInstability& u : result.instabilities) {
-    const auto it = index_of.find(u.track);
-    if (it == index_of.end()) continue;
-    instabilities.push_back({{"track", it->second},
+    std::vector<int> kept;
+    for (int t : u.tracks) {
+      if (const auto it = index_of.find(t); it != index_of.end()) kept.push_back(it->second);
+    }
+    if (kept.empty()) continue;
+    instabilities.push_back({{"modes", kept},
                              {"kind", u.kind},
                              {"speed_begin_rpm", u.speed_begin * to_rpm},
                              {"speed_end_rpm", u.speed_end * to_rpm},
@@ -253,10 +257,13 @@ std::string FormatCampbellText(const json& report) {
   const auto& instabilities = report["instabilities"];
   out << "\ninstabilities: " << (instabilities.empty() ? "none" : "") << "\n";
   for (const auto& u : instabilities) {
-    out << "  mode " << u["track"].get<int>() << ": " << u["kind"].get<std::string>() << " from "
+    std::string modes;
+    for (const auto& t : u["modes"])
+      modes += (modes.empty() ? "" : ", ") + std::to_string(t.get<int>());
+    out << "  " << u["kind"].get<std::string>() << " (mode " << modes << ") from "
         << Fixed(u["speed_begin_rpm"].get<double>(), 1) << " to "
-        << Fixed(u["speed_end_rpm"].get<double>(), 1)
-        << " rpm (max growth rate " << u["max_growth_rate"].get<double>() << " 1/s)\n";
+        << Fixed(u["speed_end_rpm"].get<double>(), 1) << " rpm (max growth rate "
+        << u["max_growth_rate"].get<double>() << " 1/s)\n";
   }
   const auto& critical = report["static_critical_speeds_rpm"];
   if (!critical.empty()) {

@@ -52,7 +52,7 @@ std::vector<CampbellExcitation> MakeCampbellExcitations(const Scene& scene, int 
 /// "status", "message", "warnings", "num_rigid_body_modes", "deflated", "tracks" [{index, label,
 /// planetary_label, frequency_hz[], growth_rate[], mac[], unstable[]}], "excitations" [{name, kind,
 /// order, hz_per_rpm}], "crossings" [{track, label, excitation, speed_rpm, frequency_hz}],
-/// "instabilities" [{track, kind, speed_begin_rpm, speed_end_rpm, max_growth_rate}],
+/// "instabilities" [{modes, kind, speed_begin_rpm, speed_end_rpm, max_growth_rate}],
 /// "static_critical_speeds_rpm", "counters", "wall_time_s".
 nlohmann::json MakeCampbellReport(const std::string& scene_source, const CampbellSweep& sweep,
                                   const std::vector<CampbellExcitation>& excitations,

@@ -14,6 +14,8 @@
 //   mesh frequency (ComputeHbStability, hb_stability.hpp): unstable points are flagged, the
 //   unstable ranges are warnings, and an undetermined verdict gives exit code 1
 //   (docs/design.md "Linear HB stability").
+// * Several mesh frequencies (a multi-stage train, HasSeveralMeshFrequencies): the quasi-periodic
+//   linear HB on the torus of the mesh frequencies (hb_quasi_periodic.hpp), no Floquet verdicts.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -29,6 +31,7 @@
 #include "geardyn/cli.hpp"
 #include "geardyn/command.hpp"
 #include "geardyn/common/check.hpp"
+#include "geardyn/hb_quasi_periodic.hpp"
 #include "geardyn/hb_report.hpp"
 #include "geardyn/interrupt.hpp"
 #include "geardyn/models/scene/scene_reader.hpp"
@@ -286,6 +289,17 @@ HbRun RunHbAnalysis(const Scene& scene, const HbRunSettings& opts, const std::st
   system_options.runout_form = opts.nonlinear ? RunoutForm::kTable : RunoutForm::kAuto;
   const SceneSystem built = BuildSceneSystem(scene, system_options);
   const bool has_slices = built.model.time_dependence() == TimeDependence::kNonlinear;
+  if (HasSeveralMeshFrequencies(built.model)) {
+    // A two-stage train: the quasi-periodic linear HB on the torus of the mesh frequencies.
+    GEARDYN_THROW_UNLESS(!opts.nonlinear && (!has_slices || opts.settings.linear),
+                         (opts.nonlinear ? "--nonlinear" : "mesh model \"slices\"")
+                             << ": the meshes of this scene run at several frequencies (a "
+                                "multi-stage train), and the nonlinear harmonic balance needs one "
+                                "mesh frequency; give --linear for the quasi-periodic linear "
+                                "harmonic balance (slice meshes linearized with every slice "
+                                "loaded)");
+    return RunQuasiPeriodicHb(opts, scene, built, frequencies, out_dir, progress);
+  }
   if (opts.nonlinear) {
     GEARDYN_THROW_UNLESS(has_slices || !scene.oscillator,
                          "--nonlinear: the oscillator has the linear model \""

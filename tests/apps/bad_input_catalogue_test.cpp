@@ -615,6 +615,35 @@ std::vector<BadInput> FlagRows() {
   c.push_back(FlagRow("CompareFrequencyToleranceNegative", "compare",
                       {"compare", pair, "--analyses", "modes", "--frequency-tolerance", "-0.1"},
                       {"--frequency-tolerance", "-0.1"}));
+  // --- campbell (issue 18) -------------------------------------------------------------------
+  const std::string planetary = "builtin:planetary-lin-parker";
+  c.push_back(FlagRow("CampbellCarrierSpeedNotPlanetary", "campbell",
+                      {"campbell", pair, "--carrier-speed", "0:1000:3"},
+                      {"--carrier-speed", "needs a planetary set"}));
+  c.push_back(FlagRow("CampbellNoSpeedAxis", "campbell", {"campbell", pair},
+                      {"--speed, --carrier-speed", "exactly one"}));
+  c.push_back(FlagRow("CampbellBothSpeedAxes", "campbell",
+                      {"campbell", planetary, "--speed", "0:1000:3", "--carrier-speed", "0:100:3"},
+                      {"--carrier-speed", "exactly one"}));
+  c.push_back(FlagRow("CampbellSpeedMalformed", "campbell",
+                      {"campbell", pair, "--speed", "0:1000"}, {"--speed", "lo:hi:n"}));
+  c.push_back(FlagRow("CampbellSpeedOnePoint", "campbell",
+                      {"campbell", pair, "--speed", "0:1000:1"}, {"--speed", "n must be"}));
+  c.push_back(FlagRow("CampbellSpeedDescending", "campbell",
+                      {"campbell", pair, "--speed", "100:10:5"}, {"--speed", "hi must be"}));
+  c.push_back(FlagRow("CampbellSpeedNegative", "campbell",
+                      {"campbell", pair, "--speed", "-5:10:5"}, {"--speed", "lo must be"}));
+  c.push_back(FlagRow("CampbellSpeedNan", "campbell", {"campbell", pair, "--speed", "0:nan:5"},
+                      {"--speed", "nan"}));
+  c.push_back(FlagRow("CampbellOrdersZero", "campbell",
+                      {"campbell", pair, "--speed", "0:10:5", "--orders", "0"}, {"--orders", "0"}));
+  c.push_back(FlagRow("CampbellOscillatorScene", "campbell",
+                      {"campbell", "builtin:kahraman-singh-oscillator", "--speed", "0:10:5"},
+                      {"oscillator"}));
+  c.push_back(FlagRow("CampbellAnisotropicSunBearing", "campbell",
+                      {"campbell", planetary, "--speed", "0:10:5", "--set",
+                       "bearing.sun-support.stiffness=[1e8, 2e8, 1e8, 1e6, 1e6, 0]"},
+                      {"sun-support", "isotropic"}));
   return c;
 }
 

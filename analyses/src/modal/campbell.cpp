@@ -112,8 +112,9 @@ std::vector<std::pair<int, double>> MatchModes(const std::vector<SpeedMode>& pre
       span.col(static_cast<Eigen::Index>(k)) = prev[static_cast<std::size_t>(cluster[k])].shape;
     }
     const Eigen::HouseholderQR<ComplexMatrix> qr(span);
-    bases.push_back(qr.householderQ() *
-                    ComplexMatrix::Identity(span.rows(), static_cast<Eigen::Index>(cluster.size())));
+    bases.push_back(
+        qr.householderQ() *
+        ComplexMatrix::Identity(span.rows(), static_cast<Eigen::Index>(cluster.size())));
   }
   struct Score {
     double mac;
@@ -150,9 +151,8 @@ std::vector<std::pair<int, double>> MatchModes(const std::vector<SpeedMode>& pre
       if (cluster_of[j] == static_cast<int>(c)) members.push_back(static_cast<int>(j));
     }
     for (std::size_t k = 0; k < members.size(); ++k) {
-      assignment[static_cast<std::size_t>(members[k])] = {clusters[c][k],
-                                                            mac_of[static_cast<std::size_t>(
-                                                                members[k])]};
+      assignment[static_cast<std::size_t>(members[k])] = {
+          clusters[c][k], mac_of[static_cast<std::size_t>(members[k])]};
     }
   }
   return assignment;
@@ -257,8 +257,8 @@ CampbellResult ComputeCampbell(const CampbellProblem& problem, const CampbellOpt
   GEARDYN_THROW_UNLESS(options.IsValid(&why), why);
   const Eigen::Index n = problem.mass.rows();
   GEARDYN_THROW_UNLESS(n > 0, "ComputeCampbell: the model has no DOFs");
-  for (const MatrixX* x : {&problem.mass, &problem.damping, &problem.stiffness,
-                           &problem.gyroscopic, &problem.speed_stiffness}) {
+  for (const MatrixX* x : {&problem.mass, &problem.damping, &problem.stiffness, &problem.gyroscopic,
+                           &problem.speed_stiffness}) {
     GEARDYN_THROW_UNLESS(x->rows() == n && x->cols() == n,
                          "ComputeCampbell: every matrix must be " << n << " × " << n);
   }
@@ -308,10 +308,9 @@ CampbellResult ComputeCampbell(const CampbellProblem& problem, const CampbellOpt
     constexpr double kCouplingTol = 1e-9;
     // V_eᵀK̃₂V_r is not required to vanish: it is the O(s²) change of the rigid mode's shape
     // (file comment), dropped with an O(s⁴) effect on the elastic frequencies.
-    const bool invariant =
-        RelNorm(v_r.transpose() * k2_t * v_r, k2_t.norm()) <= kCouplingTol &&
-        RelNorm(v_r.transpose() * g_t * v_r, g_t.norm()) <= kCouplingTol &&
-        RelNorm(c_t * v_r, c_t.norm()) <= kCouplingTol;
+    const bool invariant = RelNorm(v_r.transpose() * k2_t * v_r, k2_t.norm()) <= kCouplingTol &&
+                           RelNorm(v_r.transpose() * g_t * v_r, g_t.norm()) <= kCouplingTol &&
+                           RelNorm(c_t * v_r, c_t.norm()) <= kCouplingTol;
     if (invariant) {
       basis = v_e;
       coriolis_coupling = v_e.transpose() * g_t * v_r;
@@ -319,7 +318,8 @@ CampbellResult ComputeCampbell(const CampbellProblem& problem, const CampbellOpt
     } else {
       result.summary.warnings.push_back(
           "the rigid-body modes are not free of speed stiffness energy or damping (e.g. "
-          "mass-proportional damping): not deflated, so their zero eigenvalues stay in the problem and "
+          "mass-proportional damping): not deflated, so their zero eigenvalues stay in the problem "
+          "and "
           "their growth rates are round-off");
     }
   }
@@ -342,8 +342,8 @@ CampbellResult ComputeCampbell(const CampbellProblem& problem, const CampbellOpt
       const double mu_scale = std::max(mu.eigenvalues().cwiseAbs().maxCoeff(), 1e-300);
       for (Eigen::Index i = 0; i < mu.eigenvalues().size(); ++i) {
         const double value = mu.eigenvalues()[i];
-        if (value < -1e-12 * mu_scale) result.static_critical_speeds.push_back(
-            std::sqrt(-1.0 / value));
+        if (value < -1e-12 * mu_scale)
+          result.static_critical_speeds.push_back(std::sqrt(-1.0 / value));
       }
       std::sort(result.static_critical_speeds.begin(), result.static_critical_speeds.end());
     }
@@ -408,28 +408,48 @@ CampbellResult ComputeCampbell(const CampbellProblem& problem, const CampbellOpt
     result.summary.warnings.push_back(w.str());
   }
 
-  // Instabilities: runs of unstable grid points per track.
-  for (std::size_t ti = 0; ti < result.tracks.size(); ++ti) {
-    const CampbellTrack& t = result.tracks[ti];
-    for (std::size_t si = 0; si < num_speeds; ++si) {
-      if (!t.unstable[si]) continue;
+  // Instabilities: runs of consecutive grid speeds with an unstable mode of one kind (the tracks
+  // of a merged flutter pair swap between speeds, so the runs are not per track).
+  for (const char* kind : {"divergence", "flutter"}) {
+    const bool flutter = std::string(kind) == "flutter";
+    const auto unstable_at = [&](std::size_t si, std::size_t ti) {
+      const CampbellTrack& t = result.tracks[ti];
+      return t.unstable[si] != 0 && (t.frequency_hz[si] > 0.0) == flutter;
+    };
+    for (std::size_t si = 0; si < num_speeds;) {
+      bool any = false;
+      for (std::size_t ti = 0; ti < result.tracks.size() && !any; ++ti) any = unstable_at(si, ti);
+      if (!any) {
+        ++si;
+        continue;
+      }
       CampbellInstability run;
-      run.track = static_cast<int>(ti);
-      run.kind = t.frequency_hz[si] > 0.0 ? "flutter" : "divergence";
+      run.kind = kind;
       run.speed_begin = options.speeds[si];
       std::size_t end = si;
-      while (end + 1 < num_speeds && t.unstable[end + 1] &&
-             (t.frequency_hz[end + 1] > 0.0) == (run.kind == "flutter")) {
-        ++end;
+      for (; end < num_speeds; ++end) {
+        bool here = false;
+        for (std::size_t ti = 0; ti < result.tracks.size(); ++ti) {
+          if (!unstable_at(end, ti)) continue;
+          here = true;
+          if (std::find(run.tracks.begin(), run.tracks.end(), static_cast<int>(ti)) ==
+              run.tracks.end()) {
+            run.tracks.push_back(static_cast<int>(ti));
+          }
+          run.max_growth_rate = std::max(run.max_growth_rate, result.tracks[ti].growth_rate[end]);
+        }
+        if (!here) break;
       }
-      run.speed_end = options.speeds[end];
-      for (std::size_t k = si; k <= end; ++k) {
-        run.max_growth_rate = std::max(run.max_growth_rate, t.growth_rate[k]);
-      }
+      run.speed_end = options.speeds[end - 1];
+      std::sort(run.tracks.begin(), run.tracks.end());
       result.instabilities.push_back(run);
       si = end;
     }
   }
+  std::sort(result.instabilities.begin(), result.instabilities.end(),
+            [](const CampbellInstability& x, const CampbellInstability& y) {
+              return x.speed_begin < y.speed_begin;
+            });
   // Crossings with the excitation lines.
   for (std::size_t ti = 0; ti < result.tracks.size(); ++ti) {
     const CampbellTrack& t = result.tracks[ti];

@@ -316,6 +316,80 @@ std::vector<MeshHarmonics> ExpandMeshHarmonics(const SystemModel& model, int num
   return out;
 }
 
+namespace {
+
+// One mesh of ExpandMeshHarmonicsSparse: system period P (a multiple of the core's period),
+// operator harmonics j·q (j = 0 … J), load and ε at `harmonics` (all ≤ max_m).
+SparseMeshHarmonics ExpandOneMeshSparse(const SystemMesh& mesh, std::int64_t P, std::int64_t q,
+                                        int J, const std::vector<std::int64_t>& harmonics,
+                                        std::int64_t max_m) {
+  SparseMeshHarmonics h;
+  h.stiffness.assign(static_cast<size_t>(J) + 1, Matrix2c::Zero());
+  h.damping.assign(static_cast<size_t>(J) + 1, Matrix2c::Zero());
+  h.load.assign(harmonics.size(), Vector2c::Zero());
+  h.transmission_error.assign(harmonics.size(), Vector2c::Zero());
+  const std::int64_t pc = internal::MeshCorePeriod(mesh.core);
+  const std::int64_t qc = P / pc;  // system harmonic m is core harmonic m / qc
+  const SystemMesh stripped = WithoutSidebands(mesh);
+  const std::int64_t pb = internal::MeshCorePeriod(stripped.core);
+  const std::int64_t rb = pc / pb;  // core harmonic n is coefficient harmonic n / rb
+  const std::int64_t nb_max = max_m / (qc * rb);
+  GEARDYN_THROW_UNLESS(nb_max <= (std::int64_t{1} << 24),
+                       "mesh '" << mesh.name << "': its coefficients repeat over " << pb
+                                << " mesh cycles; their expansion up to the requested harmonic "
+                                << max_m << " of 1/" << P << " would need " << nb_max
+                                << " harmonics (a long-period ε: pitch errors?)");
+  const MatrixXc base = CoefficientValueHarmonics(stripped, pb, static_cast<int>(nb_max));
+  const auto* linear = std::get_if<LinearMeshCore>(&mesh.core);
+  std::optional<SidebandLoad> sidebands;
+  std::optional<FourierCoefficient> eps;  // the ε coefficient's series
+  std::int64_t re = 1;                    // core harmonic n is ε harmonic n / re
+  if (linear != nullptr && !linear->sidebands().empty()) {
+    sidebands.emplace(stripped, *linear, pc, max_m / qc);
+  }
+  if (linear != nullptr && linear->transmission_error()) {
+    re = pc / PeriodMeshes(*linear->transmission_error());
+    eps = ToFourier(*linear->transmission_error(), static_cast<int>(max_m / (qc * re)));
+  }
+  const auto phase = [&](std::int64_t n) {  // θ_k = θ + φ_k (see ExpandMeshHarmonics)
+    return std::polar(1.0, static_cast<double>(n) * mesh.phase_offset / static_cast<double>(pc));
+  };
+  for (int j = 0; j <= J; ++j) {
+    const std::int64_t m = static_cast<std::int64_t>(j) * q;
+    if (m % qc != 0 || (m / qc) % rb != 0) continue;
+    const std::int64_t n = m / qc;
+    const VectorXc c = base.col(n / rb) * phase(n);
+    h.stiffness[static_cast<size_t>(j)] << c(0), c(1), c(1), c(2);
+    h.damping[static_cast<size_t>(j)] << c(3), c(4), c(4), c(5);
+  }
+  for (size_t i = 0; i < harmonics.size(); ++i) {
+    const std::int64_t m = harmonics[i];
+    if (m % qc != 0) continue;
+    const std::int64_t n = m / qc;
+    Vector2c load = Vector2c::Zero(), e = Vector2c::Zero();
+    if (n % rb == 0) load = base.col(n / rb).tail<2>();
+    if (sidebands) load += sidebands->At(n);
+    if (eps && n % re == 0) {
+      const std::int64_t a = n / re;
+      e = a == 0 ? Vector2c(eps->mean().cast<std::complex<double>>())
+                 : Vector2c(eps->harmonics().col(a - 1));
+    }
+    if (linear != nullptr) {
+      const TransmissionErrorSidebands& sb = linear->sidebands();
+      for (int l = 0; l < sb.size(); ++l) {
+        if (sb.harmonics[static_cast<size_t>(l)] * (pc / sb.period_meshes) == n) {
+          e += sb.coefficients.col(l);
+        }
+      }
+    }
+    h.load[i] = load * phase(n);
+    h.transmission_error[i] = e * phase(n);
+  }
+  return h;
+}
+
+}  // namespace
+
 std::vector<SparseMeshHarmonics> ExpandMeshHarmonicsSparse(
     const SystemModel& model, std::int64_t operator_period, int J,
     const std::vector<std::int64_t>& harmonics) {
@@ -334,71 +408,20 @@ std::vector<SparseMeshHarmonics> ExpandMeshHarmonicsSparse(
   std::vector<SparseMeshHarmonics> out;
   out.reserve(model.meshes().size());
   for (const SystemMesh& mesh : model.meshes()) {
-    SparseMeshHarmonics h;
-    h.stiffness.assign(static_cast<size_t>(J) + 1, Matrix2c::Zero());
-    h.damping.assign(static_cast<size_t>(J) + 1, Matrix2c::Zero());
-    h.load.assign(harmonics.size(), Vector2c::Zero());
-    h.transmission_error.assign(harmonics.size(), Vector2c::Zero());
-    const std::int64_t pc = internal::MeshCorePeriod(mesh.core);
-    const std::int64_t qc = P / pc;  // system harmonic m is core harmonic m / qc
-    const SystemMesh stripped = WithoutSidebands(mesh);
-    const std::int64_t pb = internal::MeshCorePeriod(stripped.core);
-    const std::int64_t rb = pc / pb;  // core harmonic n is coefficient harmonic n / rb
-    const std::int64_t nb_max = max_m / (qc * rb);
-    GEARDYN_THROW_UNLESS(nb_max <= (std::int64_t{1} << 24),
-                         "mesh '" << mesh.name << "': its coefficients repeat over " << pb
-                                  << " mesh cycles; their expansion up to the requested harmonic "
-                                  << max_m << " of 1/" << P << " would need " << nb_max
-                                  << " harmonics (a long-period ε: pitch errors?)");
-    const MatrixXc base = CoefficientValueHarmonics(stripped, pb, static_cast<int>(nb_max));
-    const auto* linear = std::get_if<LinearMeshCore>(&mesh.core);
-    std::optional<SidebandLoad> sidebands;
-    std::optional<FourierCoefficient> eps;  // the ε coefficient's series
-    std::int64_t re = 1;                    // core harmonic n is ε harmonic n / re
-    if (linear != nullptr && !linear->sidebands().empty()) {
-      sidebands.emplace(stripped, *linear, pc, max_m / qc);
-    }
-    if (linear != nullptr && linear->transmission_error()) {
-      re = pc / PeriodMeshes(*linear->transmission_error());
-      eps = ToFourier(*linear->transmission_error(), static_cast<int>(max_m / (qc * re)));
-    }
-    const auto phase = [&](std::int64_t n) {  // θ_k = θ + φ_k (see ExpandMeshHarmonics)
-      return std::polar(1.0, static_cast<double>(n) * mesh.phase_offset / static_cast<double>(pc));
-    };
-    for (int j = 0; j <= J; ++j) {
-      const std::int64_t m = static_cast<std::int64_t>(j) * q;
-      if (m % qc != 0 || (m / qc) % rb != 0) continue;
-      const std::int64_t n = m / qc;
-      const VectorXc c = base.col(n / rb) * phase(n);
-      h.stiffness[static_cast<size_t>(j)] << c(0), c(1), c(1), c(2);
-      h.damping[static_cast<size_t>(j)] << c(3), c(4), c(4), c(5);
-    }
-    for (size_t i = 0; i < harmonics.size(); ++i) {
-      const std::int64_t m = harmonics[i];
-      if (m % qc != 0) continue;
-      const std::int64_t n = m / qc;
-      Vector2c load = Vector2c::Zero(), e = Vector2c::Zero();
-      if (n % rb == 0) load = base.col(n / rb).tail<2>();
-      if (sidebands) load += sidebands->At(n);
-      if (eps && n % re == 0) {
-        const std::int64_t a = n / re;
-        e = a == 0 ? Vector2c(eps->mean().cast<std::complex<double>>())
-                   : Vector2c(eps->harmonics().col(a - 1));
-      }
-      if (linear != nullptr) {
-        const TransmissionErrorSidebands& sb = linear->sidebands();
-        for (int l = 0; l < sb.size(); ++l) {
-          if (sb.harmonics[static_cast<size_t>(l)] * (pc / sb.period_meshes) == n) {
-            e += sb.coefficients.col(l);
-          }
-        }
-      }
-      h.load[i] = load * phase(n);
-      h.transmission_error[i] = e * phase(n);
-    }
-    out.push_back(std::move(h));
+    out.push_back(ExpandOneMeshSparse(mesh, P, q, J, harmonics, max_m));
   }
   return out;
+}
+
+SparseMeshHarmonics ExpandOwnPhaseMeshHarmonics(const SystemMesh& mesh, int num_harmonics) {
+  GEARDYN_THROW_UNLESS(num_harmonics >= 0,
+                       "ExpandOwnPhaseMeshHarmonics: num_harmonics must be "
+                       ">= 0, got "
+                           << num_harmonics);
+  const std::int64_t pc = internal::MeshCorePeriod(mesh.core);
+  std::vector<std::int64_t> harmonics(static_cast<std::size_t>(num_harmonics) + 1);
+  for (int n = 0; n <= num_harmonics; ++n) harmonics[static_cast<std::size_t>(n)] = n;
+  return ExpandOneMeshSparse(mesh, pc, 1, num_harmonics, harmonics, num_harmonics);
 }
 
 SystemHarmonics AssembleSystemHarmonics(const SystemModel& model,

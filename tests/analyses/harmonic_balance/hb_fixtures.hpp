@@ -53,11 +53,12 @@ inline SystemModel TorsionalPair(const MeshCore& core, double torque = 200.0) {
 }
 
 /// Two meshes (periodic_fixture.hpp's TwoMeshSystem layout), planar, with modal damping and
-/// balanced torques: a 9-DOF multi-mesh LTV system.
+/// balanced torques: a 9-DOF multi-mesh LTV system (mesh-b at `ratio_b` times mesh-a's
+/// frequency).
 inline SystemModel PlanarTwoMesh(const MeshCore& core_a, const MeshCore& core_b, double offset_b,
-                                 double modal_zeta) {
+                                 double modal_zeta, double ratio_b = 1.0) {
   const HandPairParams p;
-  SystemBuilder builder = TwoMeshBuilder(core_a, core_b, offset_b, 0.6);
+  SystemBuilder builder = TwoMeshBuilder(core_a, core_b, offset_b, 0.6, ratio_b);
   const BodyIndex pinion(0), a(1), b(2);
   Vector6 t = Vector6::Zero();
   t(5) = 300.0;

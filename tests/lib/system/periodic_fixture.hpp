@@ -35,9 +35,12 @@ inline FourierCoefficient SmoothStiffness(double k, double a, double c, double b
 }
 
 /// Pinion (body 0) driving wheel A (body 1) through "mesh-a" and wheel B (body 2) through
-/// "mesh-b"; the bearings' y stiffness is `bearing_y_factor` × the others'.
+/// "mesh-b"; the bearings' y stiffness is `bearing_y_factor` × the others'. `ratio_b` ≠ 1 runs
+/// mesh-b at another frequency (the LTV equations of a two-stage train; kinematically one pinion
+/// cannot do that, but the solvers see only the equations).
 inline SystemBuilder TwoMeshBuilder(const MeshCore& core_a, const MeshCore& core_b,
-                                    double offset_b = 0.0, double bearing_y_factor = 1.0) {
+                                    double offset_b = 0.0, double bearing_y_factor = 1.0,
+                                    double ratio_b = 1.0) {
   const HandPairParams p;
   SystemBuilder builder;
   const BodyIndex pinion = builder.AddBody("pinion", DiagMass(p.m1, p.Id1, p.I1));
@@ -51,7 +54,8 @@ inline SystemBuilder TwoMeshBuilder(const MeshCore& core_a, const MeshCore& core
                        MatrixX(kb.asDiagonal()));
   }
   builder.AddMesh("mesh-a", pinion, a, HandPairJacobian(p), core_a);
-  builder.AddMesh("mesh-b", pinion, b, HandPairJacobian(p), core_b, std::nullopt, 1.0, offset_b);
+  builder.AddMesh("mesh-b", pinion, b, HandPairJacobian(p), core_b, std::nullopt, ratio_b,
+                  offset_b);
   return builder;
 }
 

@@ -111,9 +111,10 @@ struct CampbellCrossing {
   double frequency_hz = 0.0;  ///< h·s [Hz]
 };
 
-/// A run of consecutive grid speeds where a track is unstable.
+/// A run of consecutive grid speeds with an unstable mode of one kind (any track: the two tracks
+/// of a merged flutter pair may swap from one speed to the next).
 struct CampbellInstability {
-  int track = 0;
+  std::vector<int> tracks;     ///< the tracks unstable somewhere in the run, ascending
   std::string kind;            ///< "divergence" (real λ) or "flutter" (complex λ)
   double speed_begin = 0.0;    ///< first unstable grid speed [rad/s]
   double speed_end = 0.0;      ///< last unstable grid speed [rad/s]

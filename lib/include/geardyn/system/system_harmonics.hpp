@@ -82,6 +82,15 @@ std::vector<SparseMeshHarmonics> ExpandMeshHarmonicsSparse(
     const SystemModel& model, std::int64_t operator_period, int J,
     const std::vector<std::int64_t>& harmonics);
 
+/// @brief One mesh's harmonics n = 0 … num_harmonics in its OWN phase, for analyses where the
+/// meshes run at different frequencies (the quasi-periodic harmonic balance): with u = θ_k − φ_k
+/// (θ_k = SystemMesh::MeshPhase) and P_k the core's period (mesh cycles), K2(θ_k) =
+/// Σ_n stiffness[n] e^{inu/P_k} (n < 0 by conjugation), likewise damping, the load K2 ε
+/// (load[n]) and ε (transmission_error[n]); the factor e^{inφ_k/P_k} of the offset is included.
+/// The same numbers as ExpandMeshHarmonicsSparse for a model whose only mesh is this one.
+/// @throws InvalidInput on num_harmonics < 0 or an expansion of more than 2^24 harmonics.
+SparseMeshHarmonics ExpandOwnPhaseMeshHarmonics(const SystemMesh& mesh, int num_harmonics);
+
 /// @brief K_m, C_m, f_m as dense n×n / n (O(N n²) memory: small systems only).
 SystemHarmonics AssembleSystemHarmonics(const SystemModel& model,
                                         const std::vector<MeshHarmonics>& meshes);

@@ -1,0 +1,74 @@
+// `geardyn hb` on a scene with two mesh frequencies (issue 18): the quasi-periodic path. Truths:
+// the bases follow from the tooth counts (parallel mesh z_w Ω_s, planetary z_r Ω_c, Ω_s/Ω_c =
+// 1 + z_r/z_s: ratio z_r z_s / (z_w (z_s + z_r)) = 99·21/(99·120) = 7/40), the periodic path's
+// refusals are replaced by named errors (exit code 2), and no stability verdict is claimed.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "support/cli_run.hpp"
+
+namespace geardyn::app {
+namespace {
+
+using test::RunGeardyn;
+
+const std::string kTwoStage =
+    std::string(GEARDYN_SOURCE_DIR) + "/examples/multi-stage/wind-turbine-two-stage.toml";
+
+TEST(HbQuasiPeriodicCommand, SolvesTheTwoStageTrainOnTheTorusWithoutAVerdict) {
+  const auto run =
+      RunGeardyn({"hb", kTwoStage, "--mesh-frequency", "208.37", "--harmonics", "4", "--json"});
+  ASSERT_EQ(run.code, 0) << run.err << run.out.substr(0, 2000);
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  EXPECT_EQ(j["mode"], "linear, quasi-periodic");
+  ASSERT_EQ(j["quasi_periodic"]["bases"].size(), 2u);
+  EXPECT_NEAR(j["quasi_periodic"]["bases"][1]["phase_ratio"].get<double>(), 7.0 / 40.0, 1e-12);
+  EXPECT_NEAR(j["quasi_periodic"]["bases"][1]["frequency_hz"].get<double>(), 208.37 * 7 / 40, 1e-9);
+  EXPECT_EQ(j["quasi_periodic"]["bases"][1]["meshes"].size(), 6u);  // 3 planets × 2 meshes
+  EXPECT_EQ(j["stability"], "none");
+  EXPECT_TRUE(j.contains("stability_note"));
+  const auto& p = j["points"][0];
+  EXPECT_EQ(p["status"], "success");
+  ASSERT_EQ(p["meshes"].size(), 7u);
+  for (const auto& m : p["meshes"]) {
+    EXPECT_GT(m["rms_dte_m"].get<double>(), 0.0) << m["name"];
+    // Bhatia–Davis: a signal in [m, M] has variance ≤ ((M − m)/2)², so p-p ≥ 2·RMS (the torus
+    // grid samples the p-p from below: 1 % margin).
+    EXPECT_GE(m["peak_to_peak_dte_m"].get<double>(), 2.0 * m["rms_dte_m"].get<double>() * 0.99)
+        << m["name"];
+    // The largest line of each mesh is its own mesh frequency (order 1 of its own base).
+    const auto& top = m["lines"][0];
+    const int base = m["base"].get<int>();
+    EXPECT_EQ(top["order"][base].get<int>(), 1) << m["name"];
+    EXPECT_EQ(top["order"][1 - base].get<int>(), 0) << m["name"];
+  }
+}
+
+TEST(HbQuasiPeriodicCommand, BadInputExitsWithTwoNamingTheFlag) {
+  struct Case {
+    std::vector<std::string> args;
+    std::vector<std::string> expected;
+  };
+  const std::vector<Case> cases = {
+      {{"hb", kTwoStage, "--mesh-frequency", "208.37", "--harmonics", "200"},
+       {"--harmonics", "GB", "lower --harmonics"}},
+      {{"hb", kTwoStage, "--mesh-frequency", "208.37", "--harmonics", "1000"}, {"--harmonics"}},
+      {{"hb", kTwoStage, "--mesh-frequency", "208.37", "--nonlinear"},
+       {"--nonlinear", "several frequencies"}},
+      {{"hb", kTwoStage, "--mesh-frequency", "208.37", "--harmonics", "4", "--tolerance", "1e-3"},
+       {"--tolerance"}},
+  };
+  for (const Case& c : cases) {
+    const auto run = RunGeardyn(c.args);
+    EXPECT_EQ(run.code, 2) << c.args.back() << "\n" << run.err << run.out.substr(0, 500);
+    for (const std::string& part : c.expected) {
+      EXPECT_NE(run.err.find(part), std::string::npos) << "expected '" << part << "' in\n"
+                                                       << run.err;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace geardyn::app
