@@ -20,12 +20,12 @@ struct CampbellSettings {
   /// --carrier-speed "lo:hi:n" [rpm] of the carrier of the first planetary set with a rotating
   /// carrier, instead of --speed.
   std::string carrier_speed;
-  int orders = 3;                ///< --orders K: mesh orders 1 … K (shaft orders: 1)
-  double max_frequency_hz = 0;   ///< --max-frequency: tracks whose first frequency is above it
-                                 ///< are left out (0: all)
-  bool undamped = false;         ///< --undamped: C̄ = 0 (the conservative gyroscopic system)
-  bool no_carrier_frame = false; ///< --no-carrier-frame: planetary sets in a fixed frame
-  bool no_spin = false;          ///< --no-spin-gyroscopics
+  int orders = 3;                 ///< --orders K: mesh orders 1 … K (shaft orders: 1)
+  double max_frequency_hz = 0;    ///< --max-frequency: tracks whose first frequency is above it
+                                  ///< are left out (0: all)
+  bool undamped = false;          ///< --undamped: C̄ = 0 (the conservative gyroscopic system)
+  bool no_carrier_frame = false;  ///< --no-carrier-frame: planetary sets in a fixed frame
+  bool no_spin = false;           ///< --no-spin-gyroscopics
 };
 
 /// The swept speeds: `values_rpm` of `body` (the reference or the carrier) and the reference

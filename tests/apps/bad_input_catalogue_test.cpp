@@ -625,14 +625,14 @@ std::vector<BadInput> FlagRows() {
   c.push_back(FlagRow("CampbellBothSpeedAxes", "campbell",
                       {"campbell", planetary, "--speed", "0:1000:3", "--carrier-speed", "0:100:3"},
                       {"--carrier-speed", "exactly one"}));
-  c.push_back(FlagRow("CampbellSpeedMalformed", "campbell",
-                      {"campbell", pair, "--speed", "0:1000"}, {"--speed", "lo:hi:n"}));
+  c.push_back(FlagRow("CampbellSpeedMalformed", "campbell", {"campbell", pair, "--speed", "0:1000"},
+                      {"--speed", "lo:hi:n"}));
   c.push_back(FlagRow("CampbellSpeedOnePoint", "campbell",
                       {"campbell", pair, "--speed", "0:1000:1"}, {"--speed", "n must be"}));
   c.push_back(FlagRow("CampbellSpeedDescending", "campbell",
                       {"campbell", pair, "--speed", "100:10:5"}, {"--speed", "hi must be"}));
-  c.push_back(FlagRow("CampbellSpeedNegative", "campbell",
-                      {"campbell", pair, "--speed", "-5:10:5"}, {"--speed", "lo must be"}));
+  c.push_back(FlagRow("CampbellSpeedNegative", "campbell", {"campbell", pair, "--speed", "-5:10:5"},
+                      {"--speed", "lo must be"}));
   c.push_back(FlagRow("CampbellSpeedNan", "campbell", {"campbell", pair, "--speed", "0:nan:5"},
                       {"--speed", "nan"}));
   c.push_back(FlagRow("CampbellOrdersZero", "campbell",

@@ -73,34 +73,34 @@ struct CampbellExcitation {
 
 /// The speed-dependent mean system (dense; n × n each).
 struct CampbellProblem {
-  MatrixX mass;                    ///< M, symmetric positive definite
-  MatrixX damping;                 ///< C̄ (zero for the undamped diagram)
-  MatrixX stiffness;               ///< K̄, symmetric positive semi-definite
-  MatrixX gyroscopic;              ///< G_1, skew-symmetric, per unit speed
-  MatrixX speed_stiffness;         ///< K_2, symmetric, per unit speed squared
-  DofMap dofs;                     ///< the DOFs (labels; body roles for planetary types)
+  MatrixX mass;             ///< M, symmetric positive definite
+  MatrixX damping;          ///< C̄ (zero for the undamped diagram)
+  MatrixX stiffness;        ///< K̄, symmetric positive semi-definite
+  MatrixX gyroscopic;       ///< G_1, skew-symmetric, per unit speed
+  MatrixX speed_stiffness;  ///< K_2, symmetric, per unit speed squared
+  DofMap dofs;              ///< the DOFs (labels; body roles for planetary types)
   std::vector<CampbellExcitation> excitations;
 };
 
 /// Options of ComputeCampbell.
 struct CampbellOptions {
-  std::vector<double> speeds;          ///< reference speeds s [rad/s], ≥ 0, strictly increasing
-  double zero_tol = 1e-9;              ///< rigid-body threshold, relative to max λ(K̃), in (0, 1)
-  double cluster_rel_tol = 1e-6;       ///< repeated-frequency clusters for tracking, in [0, 0.1)
-  double mac_warning = 0.5;            ///< matches below this MAC are flagged, in (0, 1)
-  double instability_tol = 1e-8;       ///< Re λ > tol·ω_s is unstable, in (0, 1e-2)
+  std::vector<double> speeds;     ///< reference speeds s [rad/s], ≥ 0, strictly increasing
+  double zero_tol = 1e-9;         ///< rigid-body threshold, relative to max λ(K̃), in (0, 1)
+  double cluster_rel_tol = 1e-6;  ///< repeated-frequency clusters for tracking, in [0, 0.1)
+  double mac_warning = 0.5;       ///< matches below this MAC are flagged, in (0, 1)
+  double instability_tol = 1e-8;  ///< Re λ > tol·ω_s is unstable, in (0, 1e-2)
   /// @brief True when every field is in range; otherwise `why` names the field and the bound.
   bool IsValid(std::string* why) const;
 };
 
 /// One tracked mode over the speed grid (vectors indexed by speed).
 struct CampbellTrack {
-  std::vector<double> frequency_hz;     ///< Im λ/2π ≥ 0 [Hz]
-  std::vector<double> growth_rate;      ///< Re λ [1/s] (< 0 damped, > 0 unstable)
-  std::vector<double> mac;              ///< MAC with the previous speed's match (1 at the first)
-  std::vector<ModeType> labels;         ///< dominant kinetic-energy kind at each speed
+  std::vector<double> frequency_hz;  ///< Im λ/2π ≥ 0 [Hz]
+  std::vector<double> growth_rate;   ///< Re λ [1/s] (< 0 damped, > 0 unstable)
+  std::vector<double> mac;           ///< MAC with the previous speed's match (1 at the first)
+  std::vector<ModeType> labels;      ///< dominant kinetic-energy kind at each speed
   std::vector<PlanetaryModeType> planetary_labels;  ///< per speed; empty without planets
-  std::vector<char> unstable;           ///< 1 where Re λ > instability_tol·ω_s
+  std::vector<char> unstable;                       ///< 1 where Re λ > instability_tol·ω_s
 };
 
 /// A crossing of a track with an excitation line.
@@ -114,10 +114,10 @@ struct CampbellCrossing {
 /// A run of consecutive grid speeds with an unstable mode of one kind (any track: the two tracks
 /// of a merged flutter pair may swap from one speed to the next).
 struct CampbellInstability {
-  std::vector<int> tracks;     ///< the tracks unstable somewhere in the run, ascending
-  std::string kind;            ///< "divergence" (real λ) or "flutter" (complex λ)
-  double speed_begin = 0.0;    ///< first unstable grid speed [rad/s]
-  double speed_end = 0.0;      ///< last unstable grid speed [rad/s]
+  std::vector<int> tracks;       ///< the tracks unstable somewhere in the run, ascending
+  std::string kind;              ///< "divergence" (real λ) or "flutter" (complex λ)
+  double speed_begin = 0.0;      ///< first unstable grid speed [rad/s]
+  double speed_end = 0.0;        ///< last unstable grid speed [rad/s]
   double max_growth_rate = 0.0;  ///< max Re λ over the run [1/s]
 };
 
