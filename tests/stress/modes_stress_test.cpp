@@ -13,7 +13,6 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
-#include <ctime>
 #include <functional>
 #include <ostream>
 #include <string>
@@ -538,9 +537,6 @@ TEST(ModesStressLarge, ArpackOnAHundredThousandDofChain) {
   Vector6 m, k;
   m << 1.0, 1.0, 1.0, 0.01, 0.01, 0.02;
   k << 1e6, 1.7e6, 2.9e6, 1.3e4, 2.3e4, 3.1e4;
-  // CPU time, not wall time: the bound is about the algorithm's cost (O(n) per Lanczos step), and
-  // wall time on a shared CI machine measures the neighbours (60 s wall for 3 s CPU at load 9).
-  const std::clock_t t0 = std::clock();
   const SystemModel model = MakeSixWayChain(N, m, k);
   ASSERT_EQ(model.num_dofs(), 6 * N);
   ModalOptions o;
@@ -548,7 +544,6 @@ TEST(ModesStressLarge, ArpackOnAHundredThousandDofChain) {
   o.num_modes = 8;
   o.compute_shapes = true;
   const ModalResult r = ComputeModes(model, o);
-  const double seconds = static_cast<double>(std::clock() - t0) / CLOCKS_PER_SEC;
   ExpectAllFinite(r);
   ASSERT_TRUE(r.summary.ok()) << r.summary.BriefReport();
   EXPECT_EQ(r.method_used, ModalMethod::kArpack);
@@ -561,7 +556,17 @@ TEST(ModesStressLarge, ArpackOnAHundredThousandDofChain) {
                 .cwiseAbs()
                 .maxCoeff(),
             kOrthoTol);
-  EXPECT_LT(seconds, 20.0) << "the 1e5-DOF eigen path took " << seconds << " s of CPU";
+  // The cost is the algorithm's, not the clock's (a CPU-time bound failed under the sanitizers at
+  // 21 s and measures the build, not the method; timings are in tests/benchmarks): two sparse
+  // factorizations (the Cholesky of M for the M-inner product, LDLᵀ of K̄ − σM; a third would be
+  // the LU fallback), and a Lanczos run whose length does not grow with n (175 applications of
+  // (K̄ − σM)⁻¹M measured with ncv = 20; the lowest eight of 10⁵ are clustered, so ARPACK restarts).
+  // A dense fallback or a restart storm shows up here.
+  const auto& counters = r.summary.counters;
+  ASSERT_TRUE(counters.count("factorizations") && counters.count("operator_applications"));
+  EXPECT_EQ(counters.at("factorizations"), 2);
+  EXPECT_LE(counters.at("operator_applications"), 400)
+      << "ARPACK restarted far more than the lowest eight need";
 }
 
 }  // namespace
