@@ -337,7 +337,8 @@ Command AddHbCommand(CLI::App& app) {
   opts->tolerance_option = cmd->add_option(
       "--tolerance", opts->run.settings.tolerance,
       "linear, without --harmonics: relative change of the RMS DTE from H/2 to H accepted "
-      "(default 1e-4; an error with --harmonics); "
+      "(default 1e-4; meshes at several frequencies: the total order, default 2e-2, the search "
+      "stopping before 0.5 GB of factors; an error with --harmonics); "
       "nonlinear, when given without --harmonics: H = 8, 16, ... until the RMS of the top "
       "quarter of the harmonics relative to the RMS is below it");
   cmd->add_flag("--linear", opts->run.settings.linear,

@@ -9,19 +9,19 @@
 
 #include "geardyn/analysis_runs.hpp"
 #include "geardyn/models/system/scene_system.hpp"
+#include "geardyn/system/common_period.hpp"  // HasSeveralMeshFrequencies
 
 namespace geardyn::app {
 
-/// True when some mesh of `model` runs at another frequency than the first (phase ratio ≠ 1).
-bool HasSeveralMeshFrequencies(const SystemModel& model);
-
 /// @brief The quasi-periodic linear HB at every listed mesh frequency (of the first mesh).
 /// --harmonics H is the total order (|κ|_1 ≤ H); without it H = 8, 16, … until the RMS DTE of
-/// every mesh changes by at most --tolerance (relative to the largest) from H/2 to H. Files
+/// every mesh changes by at most --tolerance (default 2e-2) relative to the largest from H/2 to
+/// H, stopping with tolerance_not_met before an order whose factors need over 0.5 GB. Files
 /// hb.json, hb.csv and hb_rms_dte.svg as the periodic path; the report adds "quasi_periodic"
-/// (the bases) and per point and mesh the largest DTE lines. No Floquet verdicts: the stability
-/// of a quasi-periodic LTV system is not available yet, and the report ("stability": "none",
-/// "stability_note") and a warning say so — the points are drawn and listed as unverified.
+/// (the bases) and per point and mesh the largest DTE lines. No Floquet verdicts: the monodromy
+/// over the common period (`geardyn floquet`, 40 mesh cycles on the two-stage example) costs
+/// minutes per frequency on a gearbox, and the report ("stability": "none", "stability_note")
+/// and a warning say so — the points are drawn and listed as unverified.
 /// @throws InvalidInput on an H over the memory limit (exit code 2).
 HbRun RunQuasiPeriodicHb(const HbRunSettings& opts, const Scene& scene, const SceneSystem& built,
                          const std::vector<double>& frequencies, const std::string& out_dir,

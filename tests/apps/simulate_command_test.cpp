@@ -196,7 +196,8 @@ TEST(SimulateCommandTest, FailedRunKeepsItsFiles) {
   EXPECT_EQ(dte[0], "time_s,theta_rad,pinion-wheel:dte_m,pinion-wheel:force_n");
   const std::vector<std::string> energy = ReadLines(dir / "simulate_energy.csv");
   ASSERT_GE(energy.size(), 2u);  // header + every integrated period
-  EXPECT_EQ(energy[0], "period,input_work_j,stored_change_j,dissipated_j,gross_flow_j,relative_error");
+  EXPECT_EQ(energy[0],
+            "period,input_work_j,stored_change_j,dissipated_j,gross_flow_j,relative_error");
 }
 
 // A user's Ctrl-C: the real binary gets SIGINT one second into a run that cannot become steady
@@ -211,7 +212,9 @@ TEST(SimulateCommandTest, InterruptWritesTheResultsSoFarAndExits130) {
   ASSERT_TRUE(std::filesystem::exists(binary)) << binary;
   if (std::system("timeout --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "no timeout(1)";
   const std::filesystem::path dir = OutDir("interrupted");
-  const std::string command = "timeout --preserve-status -s INT 1 " + binary.string() +
+  // SIGINT after 3 s (the run is endless): 1 s was too short on a loaded machine, where the
+  // command had not started integrating yet (an empty error stream).
+  const std::string command = "timeout --preserve-status -s INT 3 " + binary.string() +
                               " simulate builtin:helical-pair --set "
                               "mesh.pinion-wheel.damping_ratio=0.001 --steady-tolerance 1e-14 "
                               "--max-periods 10000000 --out " +

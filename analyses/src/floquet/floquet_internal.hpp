@@ -74,6 +74,18 @@ struct StateSystem {
 /// @brief Builds the StateSystem (validates the system; throws InvalidInput).
 StateSystem MakeStateSystem(const PeriodicSecondOrderSystem& system, bool deflate_rigid);
 
+/// Longest common period of meshes at different frequencies Floquet integrates over [mesh
+/// cycles of the first mesh]: the monodromy's cost grows with it.
+inline constexpr std::int64_t kMaxFloquetCommonPeriodMeshes = 10000;
+
+/// @brief The period of the Floquet problem [mesh cycles]: the operator period P_K
+/// (OperatorPeriodMeshes) with one mesh frequency; with several (a two-stage train), the common
+/// period over which every mesh's phase returns (FindCommonPeriodMeshes, common_period.hpp:
+/// r = 7/40 → 40 cycles), 0 when there is none up to kMaxFloquetCommonPeriodMeshes (the model is
+/// then refused by CheckFloquetModel). A period of the full coefficients: with tooth errors it may
+/// be a multiple of the operator's own, which changes the work but not the verdict.
+std::int64_t FloquetPeriodMeshes(const SystemModel& model);
+
 /// @brief The step structure of K and C over one operator period 2π·P_K (CollectSystemSteps
 /// truncated to [0, 2π·P_K)).
 SystemSteps OperatorSteps(const SystemModel& model, std::int64_t operator_period);

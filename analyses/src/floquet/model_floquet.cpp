@@ -6,6 +6,8 @@
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <sstream>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -13,6 +15,7 @@
 #include "geardyn/analyses/modal.hpp"
 #include "geardyn/common/check.hpp"
 #include "geardyn/common/errors.hpp"
+#include "geardyn/system/common_period.hpp"
 #include "geardyn/system/system_harmonics.hpp"
 #include "geardyn/system/system_steps.hpp"
 #include "geardyn/system/workspace.hpp"
@@ -122,7 +125,7 @@ PeriodicSecondOrderSystem MakeModelSystem(const SystemModel& model, double omega
   const StorageKind storage = projected ? model.storage_hint() : StorageKind::kDense;
   const auto assembler = std::make_shared<ModelAssembler>(model, storage, V);
   PeriodicSecondOrderSystem s;
-  const std::int64_t operator_period = OperatorPeriodMeshes(model);
+  const std::int64_t operator_period = FloquetPeriodMeshes(model);
   const double P = static_cast<double>(operator_period);
   s.period_s = 2.0 * std::numbers::pi * P / omega_m;
   if (projected) {
@@ -267,7 +270,7 @@ MeshDrivenBasis SelectMeshDrivenBasis(const SystemModel& model, double mesh_freq
   // no faster than the slowest-decaying wanted flexible mode joins the basis (an undamped mode
   // anywhere: ρ = 1). Without it a dropped undamped mode would turn "stable, marginal" into
   // "stable" with a max|λ| below 1.
-  const double period_s = static_cast<double>(OperatorPeriodMeshes(model)) / mesh_frequency_hz;
+  const double period_s = static_cast<double>(FloquetPeriodMeshes(model)) / mesh_frequency_hz;
   auto decay = [&](int k) {
     const double zeta = r.modal_damping_ratios.size() > k ? r.modal_damping_ratios[k] : 0.0;
     return std::exp(-2.0 * std::numbers::pi * zeta * r.frequencies_hz[k] * period_s);
@@ -328,7 +331,7 @@ std::vector<UndampedMode> UndampedModes(const SystemModel& model) {
   const int n = model.num_dofs();
   MatrixX C = MatrixX::Zero(n, n);
   constexpr int kSamples = 64;
-  const double period = 2.0 * std::numbers::pi * static_cast<double>(OperatorPeriodMeshes(model));
+  const double period = 2.0 * std::numbers::pi * static_cast<double>(FloquetPeriodMeshes(model));
   for (int j = 0; j < kSamples; ++j) {
     C += AssembleDamping(model, ws, period * (j + 0.5) / kSamples) / kSamples;
   }
@@ -390,7 +393,7 @@ FloquetMethod SelectFloquetMethod(const SystemModel& model, const FloquetOptions
   const int m0 = std::min(b.num_priority, m), m1 = NextBasisSize(m0, n), m2 = NextBasisSize(m1, n);
   if (m < n || m2 >= n) return FloquetMethod::kMagnus;
   const double period_s =
-      static_cast<double>(OperatorPeriodMeshes(model)) / options.mesh_frequency_hz;
+      static_cast<double>(FloquetPeriodMeshes(model)) / options.mesh_frequency_hz;
   auto highest = [&](int cols) { return b.frequencies_hz.head(cols).maxCoeff(); };
   const double full_work = MagnusWork(b.frequencies_hz.maxCoeff(), period_s, n);
   const double projection_work = MagnusWork(highest(m0), period_s, m0) +
@@ -480,7 +483,45 @@ std::vector<std::string> CheckFloquetModel(const SystemModel& model,
                          "': slice core linearized with every slice in contact (all-loaded)");
     }
   }
-  CheckSingleMeshFrequency(model, "ComputeFloquet");
+  if (HasSeveralMeshFrequencies(model)) {
+    // Several mesh frequencies: the monodromy over their common period (FloquetPeriodMeshes).
+    // "mesh 'sun-planet_1' and 5 more at 0.175", one entry per distinct ratio.
+    std::vector<std::pair<double, std::vector<std::string>>> groups;
+    for (const SystemMesh& mesh : model.meshes()) {
+      if (std::abs(mesh.phase_ratio - 1.0) <= 1e-12) continue;
+      auto it = std::find_if(groups.begin(), groups.end(), [&](const auto& g) {
+        return std::abs(g.first - mesh.phase_ratio) <= 1e-12 * g.first;
+      });
+      if (it == groups.end()) {
+        groups.push_back({mesh.phase_ratio, {}});
+        it = groups.end() - 1;
+      }
+      it->second.push_back(mesh.name);
+    }
+    std::ostringstream listed;
+    for (std::size_t g = 0; g < groups.size() && g < 4; ++g) {
+      listed << (g ? "; " : "") << "mesh '" << groups[g].second.front() << "'";
+      if (groups[g].second.size() > 1) listed << " and " << groups[g].second.size() - 1 << " more";
+      listed << " at " << groups[g].first;
+    }
+    const std::string ratios = listed.str();
+    GEARDYN_THROW_UNLESS(
+        FloquetPeriodMeshes(model) > 0,
+        "model: the meshes run at incommensurate frequencies ("
+            << ratios << " times the first mesh's): no common period of at most "
+            << kMaxFloquetCommonPeriodMeshes
+            << " mesh cycles, so there is no monodromy to compute; the quasi-periodic harmonic "
+               "balance (geardyn hb) gives the steady response");
+    GEARDYN_THROW_UNLESS(options.method != FloquetMethod::kHill,
+                         "method: hill expands the operator in harmonics of one mesh frequency; "
+                         "the meshes run at several ("
+                             << ratios
+                             << " times the first mesh's): use auto, exact_steps, magnus, "
+                                "ode_stepper, modal_projection or arpack_monodromy");
+    warnings.push_back("meshes at several frequencies (" + ratios +
+                       " times the first mesh's): the monodromy spans their common period of " +
+                       std::to_string(FloquetPeriodMeshes(model)) + " mesh cycles");
+  }
   GEARDYN_THROW_UNLESS(
       options.method != FloquetMethod::kArpackMonodromy ||
           options.arpack_nev <= 2 * model.num_dofs(),
@@ -495,9 +536,9 @@ void FinishModelFloquet(const SystemModel& model, const FloquetOptions& options,
     result->undamped_modes = UndampedModes(model);
   }
   for (const std::string& w : warnings) result->summary.warnings.push_back(w);
-  result->period_meshes = OperatorPeriodMeshes(model);
+  result->period_meshes = FloquetPeriodMeshes(model);
   result->period_s = static_cast<double>(result->period_meshes) / options.mesh_frequency_hz;
-  if (result->period_meshes != model.period_meshes()) {
+  if (result->period_meshes < model.period_meshes()) {
     result->summary.counters["load_period_meshes"] = model.period_meshes();
   }
   result->summary.wall_time_s = SecondsSince(start);
@@ -509,7 +550,10 @@ FloquetResult ComputeFloquet(const SystemModel& model, const FloquetOptions& opt
   const auto start = std::chrono::steady_clock::now();
   const std::vector<std::string> warnings = internal::CheckFloquetModel(model, options);
   FloquetResult result;
-  const int num_blocks = options.split_blocks ? model.num_blocks() : 1;
+  // Blocks of a model with several mesh frequencies share its common period, which a block alone
+  // may not have (a block of ratio-1 meshes repeats after one cycle): no split there.
+  const int num_blocks =
+      options.split_blocks && !HasSeveralMeshFrequencies(model) ? model.num_blocks() : 1;
   if (num_blocks <= 1) {
     result = internal::ComputeModelFloquet(model, options);
   } else {

@@ -11,8 +11,14 @@
 #include "floquet/floquet_internal.hpp"
 #include "geardyn/common/check.hpp"
 #include "geardyn/common/overloaded.hpp"
+#include "geardyn/system/common_period.hpp"
 
 namespace geardyn::internal {
+
+std::int64_t FloquetPeriodMeshes(const SystemModel& model) {
+  if (!HasSeveralMeshFrequencies(model)) return OperatorPeriodMeshes(model);
+  return FindCommonPeriodMeshes(model, kMaxFloquetCommonPeriodMeshes);
+}
 
 SystemSteps OperatorSteps(const SystemModel& model, std::int64_t operator_period) {
   SystemSteps all = CollectSystemSteps(model);

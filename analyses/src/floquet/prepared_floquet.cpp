@@ -13,6 +13,7 @@
 #include "floquet/floquet_internal.hpp"
 #include "geardyn/common/check.hpp"
 #include "geardyn/common/errors.hpp"
+#include "geardyn/system/common_period.hpp"
 
 namespace geardyn {
 
@@ -69,7 +70,7 @@ std::shared_ptr<const PreparedFloquet::Impl> PreparedFloquet::Prepare(const Syst
     return nullptr;
   }
   impl->period_phase = T;
-  impl->operator_period = static_cast<double>(OperatorPeriodMeshes(model));
+  impl->operator_period = static_cast<double>(internal::FloquetPeriodMeshes(model));
 
   // DFT of S samples θ_j = T j/S (φ_j = 2π j/S).
   const int dim = state.dim, f = dim / 2;
@@ -132,7 +133,9 @@ PreparedFloquet::PreparedFloquet(std::shared_ptr<const SystemModel> model,
     return;  // Compute calls ComputeFloquet, which throws the same
   }
   // The blocks ComputeFloquet analyses (the whole model when it does not split).
-  const int num_blocks = options.split_blocks ? model_->num_blocks() : 1;
+  // As ComputeFloquet: no block split with several mesh frequencies (the blocks share one period).
+  const int num_blocks =
+      options.split_blocks && !HasSeveralMeshFrequencies(*model_) ? model_->num_blocks() : 1;
   bool any = false;
   for (int b = 0; b < std::max(1, num_blocks); ++b) {
     Block block;

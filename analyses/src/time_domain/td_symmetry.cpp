@@ -7,6 +7,8 @@
 #include <numeric>
 #include <variant>
 
+#include "geardyn/system/common_period.hpp"
+
 namespace geardyn::internal {
 namespace {
 
@@ -34,8 +36,16 @@ bool TdSymmetry::any_shift() const {
 TdSymmetry MakeTdSymmetry(const TdSystem& sys, bool use_symmetry) {
   const SystemModel& model = sys.model;
   const int num_meshes = model.num_meshes();
-  TdSymmetry full;  // today's full-period plan: P, no shift
+  TdSymmetry full;  // the full-period plan: P, no shift
   full.period_meshes = model.period_meshes();
+  if (HasSeveralMeshFrequencies(model)) {
+    const std::int64_t common = FindCommonPeriodMeshes(model, kMaxCommonPeriodMeshes);
+    if (common > 0) {
+      full.period_meshes = common;
+    } else {
+      full.quasi_periodic = true;
+    }
+  }
   full.shifts.assign(static_cast<std::size_t>(num_meshes), 0);
   if (!use_symmetry) return full;
   std::vector<std::int64_t> s(static_cast<std::size_t>(num_meshes));

@@ -13,6 +13,12 @@
 /// which every r_k P_S / s_k is an integer (to 1e-9); mesh k's internal coordinates are then
 /// shifted c_k times. When no such P_S lies below the model's period P (= lcm of the cores' P_k),
 /// or the symmetry is switched off, the plan is P with no shift (the full-period test).
+///
+/// **Model period P.** With every r_k = 1, P = model.period_meshes(). Meshes at different
+/// frequencies (a two-stage train) repeat together only after the common period
+/// (FindCommonPeriodMeshes, common_period.hpp: r = 7/40 gives 40 cycles); without one up to
+/// kMaxCommonPeriodMeshes the response is quasi-periodic, the plan keeps model.period_meshes()
+/// and says so (`quasi_periodic`): a steady test over it cannot pass.
 #pragma once
 
 #include <cstdint>
@@ -23,9 +29,14 @@
 
 namespace geardyn::internal {
 
+/// Longest common period of meshes at different frequencies searched [system mesh cycles].
+inline constexpr std::int64_t kMaxCommonPeriodMeshes = 100000;
+
 /// @brief Period of the steady test and the shifts of the internal coordinates over it.
 struct TdSymmetry {
   std::int64_t period_meshes = 1;  ///< P_S [system mesh cycles]
+  /// Meshes at incommensurate frequencies (no common period up to kMaxCommonPeriodMeshes).
+  bool quasi_periodic = false;
   /// Per mesh term (TdSystem::terms order): applications c_k of its core's S per P_S (0: none).
   std::vector<std::int64_t> shifts;
   /// True when some mesh's internal coordinates are shifted.

@@ -85,11 +85,17 @@ double PhaseStep(CoefficientShape shape, double theta_k) {
   return 0.0;
 }
 
-/// E of a linear core at δ with K2 at θ_K and ε at θ_ε: ½ eᵀK2e, e = δ − ε [J].
-double LinearEnergy(const LinearMeshCore& core, double theta_k, double theta_e,
-                    const Vector2& delta) {
-  const Vector2 e = delta - EvalTransmissionError(core, theta_e);
-  return 0.5 * e.dot(EvalStiffnessCore(core, theta_k) * e);
+/// K2 of a linear core's level from its stiffness channels (K, K·h, K·μ·b²), as
+/// EvalStiffnessCore: B–S Eqs. (18, 21e, 26b), or κ = 0 without the μ term (spec 01 §5). Linear
+/// in the channels, so it maps their θ-derivatives too.
+Matrix2 K2FromChannels(MeshCoreLevel level, const Vector3& c) {
+  Matrix2 K2;
+  if (level == MeshCoreLevel::kBlankenshipSingh) {
+    K2 << c[0], -c[1], -c[1], c[2];
+  } else {
+    K2 << c[0], 0.0, 0.0, 0.0;
+  }
+  return K2;
 }
 
 }  // namespace
@@ -424,26 +430,38 @@ void EvalForces(const TdSystem& sys, TdWorkspace& ws, double theta, double theta
     if (t.kind == TdMeshTerm::Kind::kLinear) {
       // F = K2(δ − ε) + C2 δ̇ (B–S Eq. 39); E = ½ eᵀK2e; P = ∂E/∂θ_k θ̇_k at fixed δ.
       const LinearMeshCore& core = *t.linear;
-      J = EvalStiffnessCore(core, th);
-      // C2 = (c_m/K) K2 (B–S Eq. 39), as EvalDampingCore, from the K2 just evaluated (one
-      // coefficient evaluation less per force evaluation).
+      // P = θ̇_k (∂E/∂θ_K + ∂E/∂θ_ε) at fixed δ: ∂E/∂θ_K = ½ eᵀK2'e, ∂E/∂θ_ε = −eᵀK2 ε'. A
+      // Fourier stiffness gives K2 and K2' in one pass (its derivative is exact, and the ISO
+      // series of a helical mesh has ~10³ terms: three passes per mesh and force evaluation were
+      // most of a run's time); otherwise a central difference with the step of its shape
+      // (stepwise: held, its jumps are phase events), and likewise for ε.
+      Matrix2 dK = Matrix2::Zero();
+      const auto* fourier = std::get_if<FourierCoefficient>(&core.stiffness());
+      if (fourier != nullptr) {
+        Vector3 c, dc;
+        EvaluateWithDerivative(*fourier, th, c, dc);
+        J = K2FromChannels(core.level(), c);
+        dK = K2FromChannels(core.level(), dc);
+      } else {
+        J = EvalStiffnessCore(core, th);
+        const double hk =
+            Classify(core) != TimeDependence::kConstant ? PhaseStep(t.stiffness_shape, th) : 0.0;
+        if (hk > 0.0) {
+          dK = (EvalStiffnessCore(core, th + hk) - EvalStiffnessCore(core, th - hk)) / (2.0 * hk);
+        }
+      }
+      // C2 = (c_m/K) K2 (B–S Eq. 39), as EvalDampingCore, from the K2 just evaluated.
       C2 = J(0, 0) > 0.0 ? Matrix2((t.damping_coefficient / J(0, 0)) * J) : Matrix2::Zero();
       const Vector2 e = delta - EvalTransmissionError(core, th);
       F = J * e + C2 * rate;
       ws.mesh_energy += 0.5 * e.dot(J * e);
-      // P = θ̇_k (∂E/∂θ_K + ∂E/∂θ_ε): one central difference per coefficient, with the step of
-      // its shape (stepwise: held, its jumps are phase events).
-      const bool varies = Classify(core) != TimeDependence::kConstant;
-      const double hk = varies ? PhaseStep(t.stiffness_shape, th) : 0.0;
+      double dE = 0.5 * e.dot(dK * e);
       const double he = core.has_transmission_error() ? PhaseStep(t.offset_shape, th) : 0.0;
-      double dE = 0.0;
-      if (hk > 0.0) {
-        const double tp = th + hk, tm = th - hk;
-        dE += (LinearEnergy(core, tp, th, delta) - LinearEnergy(core, tm, th, delta)) / (tp - tm);
-      }
       if (he > 0.0) {
-        const double tp = th + he, tm = th - he;
-        dE += (LinearEnergy(core, th, tp, delta) - LinearEnergy(core, th, tm, delta)) / (tp - tm);
+        const Vector2 de =
+            (EvalTransmissionError(core, th + he) - EvalTransmissionError(core, th - he)) /
+            (2.0 * he);
+        dE -= e.dot(J * de);
       }
       ws.mesh_phase_power += th_rate * dE;
       ws.contacts[k] = -1;

@@ -283,6 +283,14 @@ TimeResponse Run(const TdSystem& sys, double f_m, const TimeResponseOptions& opt
   const std::int64_t P = symmetry.period_meshes * so.period_multiple;
   out.period_meshes = P;
   if (symmetry.any_shift()) summary.counters["symmetry_shift"] = 1;
+  if (symmetry.quasi_periodic) {
+    summary.warnings.push_back(
+        "meshes at incommensurate frequencies (no common period of at most " +
+        std::to_string(internal::kMaxCommonPeriodMeshes) +
+        " mesh cycles): the steady response is quasi-periodic and the steady test over " +
+        std::to_string(P) +
+        " mesh cycles cannot pass; the quasi-periodic harmonic balance (geardyn hb) solves it");
+  }
   // S x: the state a steady response has one period after x (rigid projection commutes with S:
   // S keeps M and the rigid modes, which do not move the tooth coordinates).
   const auto shifted = [&](VectorX y) -> VectorX {

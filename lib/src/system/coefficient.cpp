@@ -340,6 +340,32 @@ void Evaluate(const FourierCoefficient& coef, double theta, Eigen::Ref<VectorX> 
   }
 }
 
+void EvaluateWithDerivative(const FourierCoefficient& coef, double theta, Eigen::Ref<VectorX> out,
+                            Eigen::Ref<VectorX> derivative) {
+  CheckEvaluateArgs(coef.num_channels(), theta, out);
+  CheckEvaluateArgs(coef.num_channels(), theta, derivative);
+  const double p = static_cast<double>(coef.period_meshes());
+  const double phi = Wrap(theta, PeriodOf(coef.period_meshes())) / p;
+  const Complex step = std::polar(1.0, phi);
+  const MatrixXc& h = coef.harmonics();
+  const Eigen::Index channels = h.rows();
+  out = coef.mean();
+  derivative.setZero();
+  Complex rotation(1.0, 0.0);
+  for (int n = 1; n <= coef.num_terms(); ++n) {
+    // As Evaluate; d/dθ e^{inθ/P} = (in/P) e^{inθ/P}, so 2 Re(i s c z) = −2 s Im(c z), s = n/P.
+    rotation = ((n - 1) % 32 == 0) ? std::polar(1.0, n * phi) : rotation * step;
+    const double scale = 2.0 * static_cast<double>(n) / p;
+    const Complex* column = h.data() + (n - 1) * channels;
+    for (Eigen::Index c = 0; c < channels; ++c) {
+      const double re = column[c].real() * rotation.real() - column[c].imag() * rotation.imag();
+      const double im = column[c].real() * rotation.imag() + column[c].imag() * rotation.real();
+      out[c] += 2.0 * re;
+      derivative[c] -= scale * im;
+    }
+  }
+}
+
 void Evaluate(const TableCoefficient& coef, double theta, Eigen::Ref<VectorX> out) {
   CheckEvaluateArgs(coef.num_channels(), theta, out);
   const int s_count = coef.num_samples();

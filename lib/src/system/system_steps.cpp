@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "geardyn/common/check.hpp"
+#include "geardyn/system/common_period.hpp"
 #include "mesh_coefficients.hpp"
 
 namespace geardyn {
@@ -14,6 +15,29 @@ namespace geardyn {
 double SystemSteps::interval_end(int k) const {
   return k + 1 < num_intervals() ? breakpoints[k + 1] : breakpoints[0] + period;
 }
+
+namespace {
+
+/// Own-cycle copies r·P/P_own of a mesh over P system mesh cycles (whole: P is a common period).
+std::int64_t OwnCopies(const SystemMesh& mesh, std::int64_t period_meshes, std::int64_t own,
+                       const char* analysis) {
+  const double copies =
+      mesh.phase_ratio * static_cast<double>(period_meshes) / static_cast<double>(own);
+  const double whole = std::round(copies);
+  GEARDYN_THROW_UNLESS(whole >= 1.0 && std::abs(copies - whole) <= 1e-6,
+                       analysis << ": mesh '" << mesh.name << "' (phase ratio " << mesh.phase_ratio
+                                << ", period " << own << ") does not repeat after " << period_meshes
+                                << " system mesh cycles");
+  return static_cast<std::int64_t>(whole);
+}
+
+/// System phase θ = (θ_k − φ_k)/r_k of own phase θ_k, reduced to [0, period).
+double SystemPhase(const SystemMesh& mesh, double own_phase, double period) {
+  const double theta = std::fmod((own_phase - mesh.phase_offset) / mesh.phase_ratio, period);
+  return theta < 0.0 ? theta + period : theta;
+}
+
+}  // namespace
 
 void CheckSingleMeshFrequency(const SystemModel& model, const char* analysis) {
   for (const SystemMesh& mesh : model.meshes()) {
@@ -33,11 +57,13 @@ bool HasPiecewiseConstantOperator(const SystemModel& model) {
 }
 
 SystemSteps CollectSystemSteps(const SystemModel& model, double merge_tol) {
-  CheckSingleMeshFrequency(model, "CollectSystemSteps");
   GEARDYN_THROW_UNLESS(std::isfinite(merge_tol) && merge_tol >= 0.0,
                        "CollectSystemSteps: merge_tol must be finite and >= 0, got " << merge_tol);
   SystemSteps steps;
-  steps.period_meshes = model.period_meshes();
+  steps.period_meshes = FindCommonPeriodMeshes(model);
+  GEARDYN_THROW_UNLESS(steps.period_meshes > 0,
+                       "CollectSystemSteps: the meshes run at incommensurate frequencies (no "
+                       "common period of at most 100000 mesh cycles)");
   steps.period = 2.0 * std::numbers::pi * static_cast<double>(steps.period_meshes);
   std::vector<double> points;
   for (const SystemMesh& mesh : model.meshes()) {
@@ -51,13 +77,10 @@ SystemSteps CollectSystemSteps(const SystemModel& model, double merge_tol) {
     const std::int64_t own = internal::MeshCorePeriod(mesh.core);
     const std::vector<double> mesh_points = internal::RawBreakpoints(coefs, own);
     const double own_period = 2.0 * std::numbers::pi * static_cast<double>(own);
-    const std::int64_t copies = steps.period_meshes / own;
+    const std::int64_t copies = OwnCopies(mesh, steps.period_meshes, own, "CollectSystemSteps");
     for (std::int64_t j = 0; j < copies; ++j) {
       for (const double b : mesh_points) {
-        // θ = θ_k − φ_k, reduced to [0, T_θ).
-        const double theta =
-            std::fmod(b + own_period * static_cast<double>(j) - mesh.phase_offset, steps.period);
-        points.push_back(theta < 0.0 ? theta + steps.period : theta);
+        points.push_back(SystemPhase(mesh, b + own_period * static_cast<double>(j), steps.period));
       }
     }
   }
@@ -69,7 +92,6 @@ SystemSteps CollectSystemSteps(const SystemModel& model, double merge_tol) {
 }
 
 VectorX CollectSystemKinks(const SystemModel& model, std::int64_t period_meshes, double merge_tol) {
-  CheckSingleMeshFrequency(model, "CollectSystemKinks");
   GEARDYN_THROW_UNLESS(period_meshes >= 1,
                        "CollectSystemKinks: period_meshes must be >= 1, got " << period_meshes);
   GEARDYN_THROW_UNLESS(std::isfinite(merge_tol) && merge_tol >= 0.0,
@@ -95,13 +117,14 @@ VectorX CollectSystemKinks(const SystemModel& model, std::int64_t period_meshes,
         continue;  // constant or Fourier: analytic everywhere
       }
       const double own_period = 2.0 * std::numbers::pi * static_cast<double>(own);
-      const std::int64_t copies = std::max<std::int64_t>(1, period_meshes / own);
+      // Over 2π·P the mesh runs r·P of its own cycles (at least one period of the coefficient).
+      const double own_cycles =
+          mesh.phase_ratio * static_cast<double>(period_meshes) / static_cast<double>(own);
+      const std::int64_t copies =
+          std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(own_cycles - 1e-9)));
       for (std::int64_t j = 0; j < copies; ++j) {
         for (const double b : own_points) {
-          // θ = θ_k − φ_k, reduced to [0, 2π·P).
-          const double theta =
-              std::fmod(b + own_period * static_cast<double>(j) - mesh.phase_offset, period);
-          points.push_back(theta < 0.0 ? theta + period : theta);
+          points.push_back(SystemPhase(mesh, b + own_period * static_cast<double>(j), period));
         }
       }
     }

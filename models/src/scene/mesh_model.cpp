@@ -25,7 +25,8 @@ namespace geardyn {
 namespace {
 
 // Gears reachable from `start` through the meshes other than `excluded` and the bearings that
-// tie two gears torsionally (stiffness(5, 5) > 0): the elements that carry torque.
+// tie two gears torsionally (stiffness(5, 5) > 0), a carrier to its planets and a shaft to its
+// gears: the elements that carry torque.
 std::set<std::string, std::less<>> ReachableWithout(const Scene& scene, const std::string& start,
                                                     const std::string& excluded) {
   std::set<std::string, std::less<>> seen = {start};
@@ -42,6 +43,14 @@ std::set<std::string, std::less<>> ReachableWithout(const Scene& scene, const st
     }
     for (const BearingDef& b : scene.bearings) {
       if (!b.other.empty() && b.stiffness(5, 5) > 0.0) visit(b.body, b.other, from);
+    }
+    // Power also passes where CalcSpeedRatios ties speeds without a torsional bearing: a carrier
+    // drives its planets through their (radial) bearings, a shaft turns with its gears.
+    for (const PlanetaryDef& set : scene.planetaries) {
+      for (const std::string& planet : set.planets) visit(set.carrier, planet, from);
+    }
+    for (const ShaftDef& shaft : scene.shafts) {
+      for (const ShaftGearDef& g : shaft.gears) visit(shaft.name, g.gear, from);
     }
   }
   return seen;

@@ -212,6 +212,42 @@ TEST(CoefficientTest, EvaluateMatchesIndependentDefinitions) {
   EXPECT_EQ(Eval1(ConstantCoefficient(VectorX::Constant(1, 7.0)), 123.0), 7.0);
 }
 
+// f' of a Fourier coefficient against the derivative of the closed form, term by term:
+// d/dθ [a cos(nθ/P) + b sin(nθ/P)] = (n/P)(−a sin(nθ/P) + b cos(nθ/P)); 40 terms (past one
+// re-anchoring of the rotation), P = 3, θ far from the first period; the value equals Evaluate's.
+TEST(CoefficientTest, FourierDerivativeIsTheDerivativeOfTheClosedForm) {
+  const int terms = 40;
+  const double P = 3.0;
+  MatrixX a(2, terms), b(2, terms);
+  for (int n = 1; n <= terms; ++n) {
+    a(0, n - 1) = 1.0 / n;
+    b(0, n - 1) = std::pow(-1.0, n) / (n * n);
+    a(1, n - 1) = std::sin(0.3 * n);
+    b(1, n - 1) = 0.0;
+  }
+  VectorX m(2);
+  m << 5.0, -2.0;
+  const FourierCoefficient fc = FourierCoefficient::FromCosSin(m, a, b, 3);
+  VectorX value(2), derivative(2), plain(2);
+  for (const double t : {-4.1, 0.0, 0.37, 9.9, 1e5 + 0.25}) {
+    EvaluateWithDerivative(fc, t, value, derivative);
+    Evaluate(fc, t, plain);
+    for (int c = 0; c < 2; ++c) {
+      double expected = 0.0, scale = 0.0;
+      for (int n = 1; n <= terms; ++n) {
+        const double w = n / P;
+        expected += w * (-a(c, n - 1) * std::sin(w * t) + b(c, n - 1) * std::cos(w * t));
+        scale += w * (std::abs(a(c, n - 1)) + std::abs(b(c, n - 1)));
+      }
+      // θ = 1e5 loses ~1e-11 of the phase in the reduction modulo 6π, times |f'|'s scale.
+      EXPECT_NEAR(derivative[c], expected, 1e-10 * scale) << "theta = " << t;
+      EXPECT_NEAR(value[c], plain[c], kRoundoff * std::abs(plain[c]) + kRoundoff) << t;
+    }
+  }
+  VectorX wrong(3);
+  EXPECT_THROW(EvaluateWithDerivative(fc, 0.0, value, wrong), InvalidInput);
+}
+
 TEST(CoefficientTest, MeanEqualsAnalyticMean) {
   VectorX bp(3);
   bp << 1.0, 2.5, 5.0;

@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "geardyn/system/workspace.hpp"
 #include "periodic_fixture.hpp"
@@ -79,7 +82,7 @@ TEST(SystemSteps, ConstantSystemIsOneInterval) {
   EXPECT_DOUBLE_EQ(steps.interval_width(0), kTwoPi);
 }
 
-TEST(SystemSteps, SmoothStiffnessAndSecondMeshFrequencyAreRejectedByName) {
+TEST(SystemSteps, SmoothStiffnessAndIncommensurateSecondMeshAreRejected) {
   const LinearMeshCore smooth(MeshCoreLevel::kBlankenshipSingh, SmoothStiffness(4e8, 0.1, 0.05),
                               0.0125);
   const SystemModel model = TwoMeshSystem(WaveCore(1.6, 0.0), smooth);
@@ -90,12 +93,48 @@ TEST(SystemSteps, SmoothStiffnessAndSecondMeshFrequencyAreRejectedByName) {
   } catch (const InvalidInput& e) {
     EXPECT_NE(std::string(e.what()).find("mesh 'mesh-b'"), std::string::npos) << e.what();
   }
+  // A second stage at an irrational ratio has no common period: refused.
   const HandPairParams p;
   SystemBuilder builder = HandPairBuilder(p, SpurCore(p));
   builder.AddBody("third", DiagMass(1.0, 1e-3, 1e-3), Vector3(0, 0.2, 0));
   builder.AddMesh("second-stage", BodyIndex(1), BodyIndex(2), HandPairJacobian(p), SpurCore(p),
-                  std::nullopt, 0.4);
+                  std::nullopt, std::sqrt(2.0) / 3.0);
   EXPECT_THROW((void)CollectSystemSteps(builder.Build()), InvalidInput);
+}
+
+// Mesh b at r = 2/5 of mesh a (a two-stage train): the system repeats after 5 cycles of θ, in
+// which mesh a makes 5 own cycles and mesh b 2; b's own-phase jump β lands at θ = (β + 2πj − φ)/r.
+TEST(SystemSteps, SecondMeshFrequencyMapsItsBreakpointsThroughTheRatio) {
+  const double offset = 0.3, r = 0.4;
+  const SystemModel model =
+      TwoMeshBuilder(WaveCore(1.6, 0.0), WaveCore(1.35, 0.2), offset, 1.0, r).Build();
+  const SystemSteps steps = CollectSystemSteps(model);
+  EXPECT_EQ(steps.period_meshes, 5);
+  EXPECT_DOUBLE_EQ(steps.period, 5.0 * kTwoPi);
+  std::vector<double> expected;
+  for (int j = 0; j < 5; ++j) {
+    expected.push_back(kTwoPi * j);
+    expected.push_back(kTwoPi * (j + 0.6));
+  }
+  for (int j = 0; j < 2; ++j) {
+    for (const double beta : {0.2, 0.2 + kTwoPi * 0.35}) {
+      double theta = std::fmod((beta + kTwoPi * j - offset) / r, 5.0 * kTwoPi);
+      expected.push_back(theta < 0.0 ? theta + 5.0 * kTwoPi : theta);
+    }
+  }
+  std::sort(expected.begin(), expected.end());
+  ASSERT_EQ(steps.num_intervals(), static_cast<int>(expected.size()));
+  for (int k = 0; k < steps.num_intervals(); ++k) {
+    EXPECT_NEAR(steps.breakpoints[k], expected[static_cast<std::size_t>(k)], 1e-12);
+  }
+  // K is constant inside each interval: at two points of it the assembled K agrees.
+  SystemWorkspace ws(model, StorageKind::kDense);
+  for (int k = 0; k < steps.num_intervals(); ++k) {
+    const double a = steps.interval_begin(k), w = steps.interval_width(k);
+    const MatrixX K1 = AssembleStiffness(model, ws, a + 0.25 * w);
+    const MatrixX K2 = AssembleStiffness(model, ws, a + 0.75 * w);
+    EXPECT_LE((K1 - K2).cwiseAbs().maxCoeff(), 1e-12 * K1.cwiseAbs().maxCoeff()) << k;
+  }
 }
 
 }  // namespace

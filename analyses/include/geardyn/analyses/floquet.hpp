@@ -181,7 +181,9 @@ struct FloquetResult {
   Summary summary;  ///< status, message, error_estimate (on the multipliers), counters, time
   FloquetMethod method_used = FloquetMethod::kAuto;
   /// P_K [-]: the period of K(θ) and C(θ) in mesh cycles (internal::OperatorPeriodMeshes), not
-  /// the hunting period of the transmission error (which forces, but does not excite).
+  /// the hunting period of the transmission error (which forces, but does not excite); with
+  /// meshes at several frequencies, their common period (internal::FloquetPeriodMeshes: 40 for a
+  /// planetary stage at 7/40 of the parallel stage's mesh frequency).
   std::int64_t period_meshes = 1;
   double period_s = 0.0;  ///< T = P_K / f_m [s]
   VectorXc multipliers;  ///< (2n, or fewer for kHill/kModalProjection/kArpackMonodromy) λ, by |λ|
@@ -205,8 +207,12 @@ struct FloquetResult {
 };
 
 /// @brief Floquet multipliers of the model at the given mesh frequency (see the @file).
-/// @throws InvalidInput on invalid options, a model with a nonlinear core, or meshes at
-///   different frequencies (CheckSingleMeshFrequency).
+/// Meshes at several commensurate frequencies (a two-stage train: r_k = p_k/q from the tooth
+/// counts) make K(θ), C(θ) periodic over their common period of q mesh cycles; the monodromy
+/// spans it (exact, not an approximation; the work grows with q) and a warning names it.
+/// @throws InvalidInput on invalid options, a model with a nonlinear core, meshes at frequencies
+///   without a common period of at most 10⁴ mesh cycles (internal::FloquetPeriodMeshes), or
+///   method kHill with several mesh frequencies.
 FloquetResult ComputeFloquet(const SystemModel& model, const FloquetOptions& options);
 
 namespace internal {

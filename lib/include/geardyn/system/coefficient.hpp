@@ -195,6 +195,11 @@ void Evaluate(const PiecewiseConstantCoefficient& coef, double theta, Eigen::Ref
 void Evaluate(const FourierCoefficient& coef, double theta, Eigen::Ref<VectorX> out);
 /// Periodic linear interpolation between the two neighbouring samples.
 void Evaluate(const TableCoefficient& coef, double theta, Eigen::Ref<VectorX> out);
+/// @brief f_c(θ) and its exact derivative f_c'(θ) = Σ 2 Re(i(n/P) c_{c,n} e^{inθ/P}) [per rad]
+/// in one pass over the terms (the cost of one Evaluate); never allocates.
+/// @throws InvalidInput if out or derivative has the wrong size or θ is not finite.
+void EvaluateWithDerivative(const FourierCoefficient& coef, double theta, Eigen::Ref<VectorX> out,
+                            Eigen::Ref<VectorX> derivative);
 
 /// @brief The mean (1/T)∫_0^T f_c dθ of each channel, exact for every representation (for a
 /// table: the mean of its linear interpolant, which is the mean of the samples).
