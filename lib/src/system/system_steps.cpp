@@ -60,7 +60,10 @@ SystemSteps CollectSystemSteps(const SystemModel& model, double merge_tol) {
   GEARDYN_THROW_UNLESS(std::isfinite(merge_tol) && merge_tol >= 0.0,
                        "CollectSystemSteps: merge_tol must be finite and >= 0, got " << merge_tol);
   SystemSteps steps;
-  steps.period_meshes = FindCommonPeriodMeshes(model);
+  // One frequency: the model's period, however long (a hunting period lcm(z1, z2) may exceed
+  // the common-period search bound); several: their common period.
+  steps.period_meshes =
+      HasSeveralMeshFrequencies(model) ? FindCommonPeriodMeshes(model) : model.period_meshes();
   GEARDYN_THROW_UNLESS(steps.period_meshes > 0,
                        "CollectSystemSteps: the meshes run at incommensurate frequencies (no "
                        "common period of at most 100000 mesh cycles)");

@@ -102,6 +102,22 @@ TEST(SystemSteps, SmoothStiffnessAndIncommensurateSecondMeshAreRejected) {
   EXPECT_THROW((void)CollectSystemSteps(builder.Build()), InvalidInput);
 }
 
+// One mesh frequency with a period beyond the common-period search bound (10⁵ cycles: a hunting
+// period of coprime tooth counts near 317 × 331 = 104 927): the steps span the model's period.
+TEST(SystemSteps, LongHuntingPeriodOfOneFrequencyIsKept) {
+  const std::int64_t P = 104927;
+  VectorX breakpoints(2);
+  breakpoints << 0.0, 1.0;
+  MatrixX values(3, 2);
+  values << 6e8, 3e8, 0.0, 0.0, 1e4, 5e3;
+  const LinearMeshCore core(MeshCoreLevel::kBlankenshipSingh,
+                            PiecewiseConstantCoefficient(breakpoints, values, P), 0.0125);
+  const SystemSteps steps = CollectSystemSteps(HandPairBuilder(HandPairParams(), core).Build());
+  EXPECT_EQ(steps.period_meshes, P);
+  EXPECT_EQ(steps.num_intervals(), 2);
+  EXPECT_NEAR(steps.interval_width(0), 1.0, 1e-9);
+}
+
 // Mesh b at r = 2/5 of mesh a (a two-stage train): the system repeats after 5 cycles of θ, in
 // which mesh a makes 5 own cycles and mesh b 2; b's own-phase jump β lands at θ = (β + 2πj − φ)/r.
 TEST(SystemSteps, SecondMeshFrequencyMapsItsBreakpointsThroughTheRatio) {

@@ -18,7 +18,8 @@
 namespace geardyn {
 
 /// @brief Common period of the system (see @file) [mesh cycles of θ].
-/// @param[in] model any model; all ratios 1 give model.period_meshes().
+/// @param[in] model any model; all ratios 1 give model.period_meshes() (0 above the bound: a
+///   single-frequency caller uses model.period_meshes() directly).
 /// @param[in] max_period_meshes search bound ≥ 1 [mesh cycles].
 /// @param[in] cycle_tolerance r_k q / P_k counts as whole when it is within this many cycles of
 ///   a whole number [-], in [0, 1e-3]: the phase slip of mesh k over one period. Ratios from
