@@ -85,19 +85,6 @@ double PhaseStep(CoefficientShape shape, double theta_k) {
   return 0.0;
 }
 
-/// K2 of a linear core's level from its stiffness channels (K, K·h, K·μ·b²), as
-/// EvalStiffnessCore: B–S Eqs. (18, 21e, 26b), or κ = 0 without the μ term (spec 01 §5). Linear
-/// in the channels, so it maps their θ-derivatives too.
-Matrix2 K2FromChannels(MeshCoreLevel level, const Vector3& c) {
-  Matrix2 K2;
-  if (level == MeshCoreLevel::kBlankenshipSingh) {
-    K2 << c[0], -c[1], -c[1], c[2];
-  } else {
-    K2 << c[0], 0.0, 0.0, 0.0;
-  }
-  return K2;
-}
-
 }  // namespace
 
 void AppendTriplets(const SparseMatrixRowMajor& a, double scale,
@@ -440,8 +427,8 @@ void EvalForces(const TdSystem& sys, TdWorkspace& ws, double theta, double theta
       if (fourier != nullptr) {
         Vector3 c, dc;
         EvaluateWithDerivative(*fourier, th, c, dc);
-        J = K2FromChannels(core.level(), c);
-        dK = K2FromChannels(core.level(), dc);
+        J = StiffnessCoreFromChannels(core.level(), c);
+        dK = StiffnessCoreFromChannels(core.level(), dc);
       } else {
         J = EvalStiffnessCore(core, th);
         const double hk =

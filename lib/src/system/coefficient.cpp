@@ -321,49 +321,48 @@ void Evaluate(const PiecewiseConstantCoefficient& coef, double theta, Eigen::Ref
   out = coef.values().col(coef.FindInterval(theta));
 }
 
-void Evaluate(const FourierCoefficient& coef, double theta, Eigen::Ref<VectorX> out) {
-  CheckEvaluateArgs(coef.num_channels(), theta, out);
+namespace {
+
+// Σ over the Fourier terms of f (and of f' when `derivative` is given): e^{inφ} by rotation,
+// re-anchored every 32 terms to bound round-off growth; d/dθ e^{inθ/P} = (in/P) e^{inθ/P}, so
+// f' gets 2 Re(i s c z) = −2 s Im(c z), s = n/P.
+void SumFourier(const FourierCoefficient& coef, double theta, Eigen::Ref<VectorX> out,
+                Eigen::Ref<VectorX>* derivative) {
   const double p = static_cast<double>(coef.period_meshes());
   const double phi = Wrap(theta, PeriodOf(coef.period_meshes())) / p;
   const Complex step = std::polar(1.0, phi);
   const MatrixXc& h = coef.harmonics();
   const Eigen::Index channels = h.rows();
   out = coef.mean();
+  if (derivative != nullptr) derivative->setZero();
   Complex rotation(1.0, 0.0);
   for (int n = 1; n <= coef.num_terms(); ++n) {
-    // e^{inφ} by rotation, re-anchored every 32 terms to bound round-off growth.
     rotation = ((n - 1) % 32 == 0) ? std::polar(1.0, n * phi) : rotation * step;
     const Complex* column = h.data() + (n - 1) * channels;
     for (Eigen::Index c = 0; c < channels; ++c) {
       out[c] += 2.0 * (column[c].real() * rotation.real() - column[c].imag() * rotation.imag());
     }
+    if (derivative == nullptr) continue;
+    const double scale = 2.0 * static_cast<double>(n) / p;
+    for (Eigen::Index c = 0; c < channels; ++c) {
+      (*derivative)[c] -=
+          scale * (column[c].real() * rotation.imag() + column[c].imag() * rotation.real());
+    }
   }
+}
+
+}  // namespace
+
+void Evaluate(const FourierCoefficient& coef, double theta, Eigen::Ref<VectorX> out) {
+  CheckEvaluateArgs(coef.num_channels(), theta, out);
+  SumFourier(coef, theta, out, nullptr);
 }
 
 void EvaluateWithDerivative(const FourierCoefficient& coef, double theta, Eigen::Ref<VectorX> out,
                             Eigen::Ref<VectorX> derivative) {
   CheckEvaluateArgs(coef.num_channels(), theta, out);
   CheckEvaluateArgs(coef.num_channels(), theta, derivative);
-  const double p = static_cast<double>(coef.period_meshes());
-  const double phi = Wrap(theta, PeriodOf(coef.period_meshes())) / p;
-  const Complex step = std::polar(1.0, phi);
-  const MatrixXc& h = coef.harmonics();
-  const Eigen::Index channels = h.rows();
-  out = coef.mean();
-  derivative.setZero();
-  Complex rotation(1.0, 0.0);
-  for (int n = 1; n <= coef.num_terms(); ++n) {
-    // As Evaluate; d/dθ e^{inθ/P} = (in/P) e^{inθ/P}, so 2 Re(i s c z) = −2 s Im(c z), s = n/P.
-    rotation = ((n - 1) % 32 == 0) ? std::polar(1.0, n * phi) : rotation * step;
-    const double scale = 2.0 * static_cast<double>(n) / p;
-    const Complex* column = h.data() + (n - 1) * channels;
-    for (Eigen::Index c = 0; c < channels; ++c) {
-      const double re = column[c].real() * rotation.real() - column[c].imag() * rotation.imag();
-      const double im = column[c].real() * rotation.imag() + column[c].imag() * rotation.real();
-      out[c] += 2.0 * re;
-      derivative[c] -= scale * im;
-    }
-  }
+  SumFourier(coef, theta, out, &derivative);
 }
 
 void Evaluate(const TableCoefficient& coef, double theta, Eigen::Ref<VectorX> out) {

@@ -175,16 +175,20 @@ LinearMeshCore MakeMeanLinearMeshCore(const LinearMeshCore& core) {
                         /*mean_lti=*/true, core.sidebands());
 }
 
-Matrix2 EvalStiffnessCore(const LinearMeshCore& core, double theta) {
-  Vector3 c;
-  Evaluate(core.stiffness(), theta, c);
+Matrix2 StiffnessCoreFromChannels(MeshCoreLevel level, const Vector3& c) {
   Matrix2 K2;
-  if (core.level() == MeshCoreLevel::kBlankenshipSingh) {
+  if (level == MeshCoreLevel::kBlankenshipSingh) {
     K2 << c[0], -c[1], -c[1], c[2];  // K [[1, −h], [−h, μ b²]] (B–S Eqs. 18, 21e, 26b)
   } else {
     K2 << c[0], 0.0, 0.0, 0.0;  // κ = 0, μ term dropped (spec 01 §5)
   }
   return K2;
+}
+
+Matrix2 EvalStiffnessCore(const LinearMeshCore& core, double theta) {
+  Vector3 c;
+  Evaluate(core.stiffness(), theta, c);
+  return StiffnessCoreFromChannels(core.level(), c);
 }
 
 Matrix2 EvalDampingCore(const LinearMeshCore& core, double theta, double c_m) {

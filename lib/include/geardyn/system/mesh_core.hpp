@@ -208,6 +208,12 @@ LinearMeshCore MakeMeanLinearMeshCore(const LinearMeshCore& core);
 /// @throws InvalidInput if θ is not finite.
 Matrix2 EvalStiffnessCore(const LinearMeshCore& core, double theta);
 
+/// @brief K2 of a level from the stiffness channels c = (K, K·h, K·μ·b²), the map
+/// EvalStiffnessCore applies: [[K, −Kh], [−Kh, Kμb²]] (B–S Eqs. 18, 21e, 26b), or diag(K, 0)
+/// for the reduced levels (κ = 0, μ term dropped; spec 01 §5). Linear in c, so it maps the
+/// channels' θ-derivatives to ∂K2/∂θ as well.
+Matrix2 StiffnessCoreFromChannels(MeshCoreLevel level, const Vector3& c);
+
 /// @brief C2(θ) = (c_m / K(θ)) K2(θ) (B–S Eq. 39), zero where K(θ) = 0. No allocation.
 /// @param[in] theta mesh phase [rad].
 /// @param[in] c_m mesh damping coefficient [N·s/m] (ResolveDampingCoefficient).
