@@ -60,6 +60,9 @@ struct FloquetSettings {
   std::string method = "auto";  ///< --method (kFloquetMethods' names)
   double tolerance = 1e-10;     ///< --tolerance on the multipliers, in (0, 1)
   int nev = 6;                  ///< --nev, arpack_monodromy only, 1 … 2n
+  /// --max-approximant-period: incommensurate mesh frequencies, the longest common period of the
+  /// rational approximants analysed [mesh cycles], 0 … 10⁴ (0 refuses such a scene).
+  long max_approximant_period = 1000;
 };
 
 /// `geardyn floquet`: the multipliers at the operating point. Writes floquet.json and

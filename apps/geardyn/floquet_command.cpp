@@ -45,6 +45,15 @@ nlohmann::json MakeFloquetReport(const Scene& scene, const std::string& requeste
                         {"damping_ratio", m.damping_ratio},
                         {"dominant_dof", m.dominant_dof}});
   }
+  nlohmann::json approximants = nlohmann::json::array();
+  for (const FloquetApproximant& a : r.approximants) {
+    approximants.push_back({{"period_meshes", a.period_meshes},
+                            {"ratios", a.ratios},
+                            {"ratio_error", a.ratio_error},
+                            {"max_real_exponent", a.max_real_exponent},
+                            {"verdict", ToString(a.verdict)},
+                            {"error_estimate", a.error_estimate}});
+  }
   nlohmann::json warnings = scene_warnings;
   for (const std::string& w : r.summary.warnings) warnings.push_back(w);
   return {{"scene", scene.source},
@@ -69,6 +78,7 @@ nlohmann::json MakeFloquetReport(const Scene& scene, const std::string& requeste
           {"wall_time_s", r.summary.wall_time_s},
           {"counters", r.summary.counters},
           {"warnings", warnings},
+          {"approximants", approximants},
           {"multipliers", multipliers}};
 }
 
@@ -106,6 +116,17 @@ std::string FormatFloquetText(const nlohmann::json& j) {
          "warnings)";
   }
   s << "\n";
+  if (!j["approximants"].empty()) {
+    s << "incommensurate mesh frequencies, rational approximants (the multipliers are the "
+         "last one's):\n  period [cycles]   ratio error   max Re μ [1/s]   verdict\n";
+    for (const nlohmann::json& a : j["approximants"]) {
+      s << "  " << std::setw(15) << a["period_meshes"].get<long>() << "   " << std::setw(11)
+        << std::setprecision(3) << a["ratio_error"].get<double>() << "   " << std::setw(14)
+        << std::setprecision(8) << a["max_real_exponent"].get<double>() << "   "
+        << a["verdict"].get<std::string>() << "\n"
+        << std::setprecision(10);
+    }
+  }
   s << "  #   Re λ              Im λ              |λ|\n";
   int k = 1;
   for (const nlohmann::json& m : j["multipliers"]) {
@@ -150,6 +171,7 @@ FloquetRun RunFloquetAnalysis(const Scene& scene, const FloquetSettings& setting
       "--tolerance: must be a finite number in (0, 1), got " << settings.tolerance);
   options.tolerance = settings.tolerance;
   options.arpack_nev = settings.nev;
+  options.max_approximant_period_meshes = settings.max_approximant_period;
   // --nev is checked here, naming the flag: FloquetOptions names its own field (arpack_nev).
   GEARDYN_THROW_UNLESS(settings.nev >= 1, "--nev: must be >= 1, got " << settings.nev);
   if (scene.meshes.empty() && !scene.oscillator) {
@@ -210,6 +232,11 @@ Command AddFloquetCommand(CLI::App& app) {
       ->check(FiniteNumberIn(0.0, 1.0, true, true));  // FloquetOptions::tolerance's bound
   cmd->add_option("--nev", opts->settings.nev,
                   "arpack_monodromy: number of largest-|λ| multipliers (default 6, <= 2n)");
+  cmd->add_option("--max-approximant-period", opts->settings.max_approximant_period,
+                  "meshes at incommensurate frequencies (no common period of at most 10^4 "
+                  "cycles): the longest common period of the rational approximants analysed "
+                  "instead, in mesh cycles (default 1000; 0 refuses such a scene)")
+      ->check(CLI::Range(0L, 10000L));
   return {cmd, [opts](std::ostream& out) { return RunFloquet(*opts, out); }};
 }
 

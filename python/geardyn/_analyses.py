@@ -92,6 +92,7 @@ def modes(scene: SceneLike, *, num_modes: int = 20, method: str = "auto", shapes
 
 
 def floquet(scene: SceneLike, *, method: str = "auto", tolerance: float = 1e-10, nev: int = 6,
+            max_approximant_period: int = 1000,
             out_dir: str | os.PathLike[str] | None = None) -> FloquetResult:
     """``geardyn floquet``: Floquet multipliers, max|λ| and the verdict at the operating point.
 
@@ -100,8 +101,13 @@ def floquet(scene: SceneLike, *, method: str = "auto", tolerance: float = 1e-10,
             "arpack_monodromy".
         tolerance: error target on the multipliers, in (0, 1).
         nev: arpack_monodromy's number of largest multipliers.
+        max_approximant_period: meshes at incommensurate frequencies (no common period of at most
+            10⁴ cycles): the longest common period of the rational approximants analysed instead
+            [mesh cycles], 0 … 10⁴ (0 refuses such a scene). The approximants are in
+            ``report["approximants"]``.
     """
-    raw = _geardyn.floquet(_scene(scene).handle(), method, tolerance, nev, _out(out_dir))
+    raw = _geardyn.floquet(_scene(scene).handle(), method, tolerance, nev, max_approximant_period,
+                           _out(out_dir))
     fields = {k: raw[k] for k in ("multipliers", "exponents", "max_abs_multiplier", "stable",
                                   "stability_margin", "verdict", "marginal", "mesh_frequency_hz",
                                   "period_s", "period_meshes", "method_used")}

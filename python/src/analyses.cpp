@@ -73,11 +73,17 @@ py::dict Modes(const Scene& scene, int num_modes, const std::string& method, boo
 }
 
 py::dict Floquet(const Scene& scene, const std::string& method, double tolerance, int nev,
-                 const std::string& out_dir) {
+                 long max_approximant_period, const std::string& out_dir) {
   app::FloquetSettings settings;
   settings.method = method;
   settings.tolerance = tolerance;
   settings.nev = nev;
+  // The command's --max-approximant-period bound, checked here (CLI11 checks the flag's).
+  if (max_approximant_period < 0 || max_approximant_period > 10000) {
+    throw InvalidInput("--max-approximant-period: must be in [0, 10000] mesh cycles, got " +
+                       std::to_string(max_approximant_period));
+  }
+  settings.max_approximant_period = max_approximant_period;
   std::optional<app::FloquetRun> run;
   const auto start = std::chrono::steady_clock::now();
   {
@@ -197,7 +203,7 @@ void BindAnalyses(py::module_& m) {
   m.def("modes", &Modes, py::arg("scene"), py::arg("num_modes"), py::arg("method"),
         py::arg("shapes"), py::arg("damped"), py::arg("out_dir"));
   m.def("floquet", &Floquet, py::arg("scene"), py::arg("method"), py::arg("tolerance"),
-        py::arg("nev"), py::arg("out_dir"));
+        py::arg("nev"), py::arg("max_approximant_period"), py::arg("out_dir"));
   m.def(
       "hb",
       [](const Scene& scene, const std::string& mesh_frequency, int harmonics,

@@ -34,6 +34,8 @@ def test_the_message_is_the_commands(call, argv):
     (lambda: geardyn.floquet(PAIR, method="bogus"), "--method"),
     (lambda: geardyn.floquet(PAIR, tolerance=math.nan), "--tolerance"),
     (lambda: geardyn.floquet(PAIR, tolerance=2.0), "--tolerance"),
+    (lambda: geardyn.floquet(PAIR, max_approximant_period=20000), "--max-approximant-period"),
+    (lambda: geardyn.floquet(PAIR, max_approximant_period=-1), "--max-approximant-period"),
     (lambda: geardyn.hb(PAIR, stability="sometimes"), "--stability"),
     (lambda: geardyn.hb(PAIR, branch_search=-1), "--branch-search"),
     (lambda: geardyn.stability_chart(PAIR, x="operating_point.speed_rpm=100:200:3",

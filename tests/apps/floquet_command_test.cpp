@@ -231,6 +231,24 @@ TEST(FloquetCommand, BadInputExitsWithTwo) {
   const test::CliRun speed = RunGeardyn({"floquet", kRig, "--set", "operating_point.speed_rpm=0"});
   EXPECT_EQ(speed.code, app::kExitBadInput);
   EXPECT_NE(speed.err.find("mesh frequency is 0"), std::string::npos) << speed.err;
+  // The rational-approximant bound is FloquetOptions' [0, 10⁴] mesh cycles.
+  for (const char* bound : {"-1", "20000", "ten"}) {
+    const test::CliRun approximant =
+        RunGeardyn({"floquet", kRig, "--max-approximant-period", bound});
+    EXPECT_EQ(approximant.code, app::kExitBadInput) << bound;
+    EXPECT_NE(approximant.err.find("--max-approximant-period"), std::string::npos)
+        << approximant.err;
+  }
+}
+
+TEST(FloquetCommand, OneMeshFrequencyHasNoApproximants) {
+  // The study is for incommensurate trains only: a single-frequency scene reports none, and the
+  // bound (0 included) does not change its answer.
+  const nlohmann::json j = RunJson({"floquet", kRig});
+  const nlohmann::json off = RunJson({"floquet", kRig, "--max-approximant-period", "0"});
+  EXPECT_TRUE(j["approximants"].empty());
+  EXPECT_EQ(j["max_abs_multiplier"], off["max_abs_multiplier"]);
+  EXPECT_EQ(j["verdict"], off["verdict"]);
 }
 
 }  // namespace

@@ -213,8 +213,11 @@ TEST(SimulateCommandTest, InterruptWritesTheResultsSoFarAndExits130) {
   if (std::system("timeout --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "no timeout(1)";
   const std::filesystem::path dir = OutDir("interrupted");
   // SIGINT after 3 s (the run is endless): 1 s was too short on a loaded machine, where the
-  // command had not started integrating yet (an empty error stream).
-  const std::string command = "timeout --preserve-status -s INT 3 " + binary.string() +
+  // command had not started integrating yet (an empty error stream). --foreground: otherwise
+  // timeout(1) signals the child and then its whole process group, a second SIGINT that by
+  // design (a second Ctrl-C) restores the default action and kills the command before it writes
+  // anything; whether it did was a race, lost whenever the parent had not ignored SIGINT.
+  const std::string command = "timeout --foreground --preserve-status -s INT 3 " + binary.string() +
                               " simulate builtin:helical-pair --set "
                               "mesh.pinion-wheel.damping_ratio=0.001 --steady-tolerance 1e-14 "
                               "--max-periods 10000000 --out " +

@@ -86,6 +86,13 @@ inline constexpr std::int64_t kMaxFloquetCommonPeriodMeshes = 10000;
 /// be a multiple of the operator's own, which changes the work but not the verdict.
 std::int64_t FloquetPeriodMeshes(const SystemModel& model);
 
+/// @brief ComputeFloquet's answer for incommensurate frequencies (floquet.hpp): the last three
+/// approximants within options.max_approximant_period_meshes, each an ordinary ComputeFloquet.
+/// `ratios_text` names the meshes and ratios for the messages.
+/// @throws InvalidInput when fewer than two approximants fit the bound.
+FloquetResult ComputeApproximantFloquet(const SystemModel& model, const FloquetOptions& options,
+                                        const std::string& ratios_text);
+
 /// @brief The step structure of K and C over one operator period 2π·P_K (CollectSystemSteps
 /// truncated to [0, 2π·P_K)).
 SystemSteps OperatorSteps(const SystemModel& model, std::int64_t operator_period);
@@ -146,6 +153,9 @@ FloquetResult CombineBlockResults(const SystemModel& model, const FloquetOptions
 
 /// @brief ComputeFloquet(model)'s checks of the options and the model (throws InvalidInput);
 /// returns the model's warnings (slice cores linearized).
+/// "mesh 'sun-planet_1' and 5 more at 0.175; …": the meshes at a ratio other than 1, one entry
+/// per distinct ratio (at most four), for messages.
+std::string MeshRatiosText(const SystemModel& model);
 std::vector<std::string> CheckFloquetModel(const SystemModel& model, const FloquetOptions& options);
 
 /// @brief ComputeFloquet(model)'s last step: the undamped-mode list of a marginal verdict, the

@@ -76,6 +76,13 @@ bool FloquetOptions::IsValid(std::string* why) const {
        << "] (every restart applies the monodromy up to arpack_ncv times, each a propagation "
           "over the whole period), got "
        << arpack_max_iterations;
+  } else if (max_approximant_period_meshes < 0 ||
+             max_approximant_period_meshes > internal::kMaxFloquetCommonPeriodMeshes) {
+    os << "max_approximant_period_meshes: must be in [0, "
+       << internal::kMaxFloquetCommonPeriodMeshes
+       << "] (0 refuses incommensurate mesh "
+          "frequencies; the work grows with the period), got "
+       << max_approximant_period_meshes;
   } else if (modal_projection_min_dofs < 1) {
     os << "modal_projection_min_dofs: must be >= 1, got " << modal_projection_min_dofs;
   } else {

@@ -467,6 +467,30 @@ FloquetResult CombineBlockResults(const SystemModel& model, const FloquetOptions
   return result;
 }
 
+// "mesh 'sun-planet_1' and 5 more at 0.175", one entry per distinct ratio other than 1.
+std::string MeshRatiosText(const SystemModel& model) {
+  // "mesh 'sun-planet_1' and 5 more at 0.175", one entry per distinct ratio.
+  std::vector<std::pair<double, std::vector<std::string>>> groups;
+  for (const SystemMesh& mesh : model.meshes()) {
+    if (std::abs(mesh.phase_ratio - 1.0) <= 1e-12) continue;
+    auto it = std::find_if(groups.begin(), groups.end(), [&](const auto& g) {
+      return std::abs(g.first - mesh.phase_ratio) <= 1e-12 * g.first;
+    });
+    if (it == groups.end()) {
+      groups.push_back({mesh.phase_ratio, {}});
+      it = groups.end() - 1;
+    }
+    it->second.push_back(mesh.name);
+  }
+  std::ostringstream listed;
+  for (std::size_t g = 0; g < groups.size() && g < 4; ++g) {
+    listed << (g ? "; " : "") << "mesh '" << groups[g].second.front() << "'";
+    if (groups[g].second.size() > 1) listed << " and " << groups[g].second.size() - 1 << " more";
+    listed << " at " << groups[g].first;
+  }
+  return listed.str();
+}
+
 std::vector<std::string> CheckFloquetModel(const SystemModel& model,
                                            const FloquetOptions& options) {
   std::string why;
@@ -485,33 +509,16 @@ std::vector<std::string> CheckFloquetModel(const SystemModel& model,
   }
   if (HasSeveralMeshFrequencies(model)) {
     // Several mesh frequencies: the monodromy over their common period (FloquetPeriodMeshes).
-    // "mesh 'sun-planet_1' and 5 more at 0.175", one entry per distinct ratio.
-    std::vector<std::pair<double, std::vector<std::string>>> groups;
-    for (const SystemMesh& mesh : model.meshes()) {
-      if (std::abs(mesh.phase_ratio - 1.0) <= 1e-12) continue;
-      auto it = std::find_if(groups.begin(), groups.end(), [&](const auto& g) {
-        return std::abs(g.first - mesh.phase_ratio) <= 1e-12 * g.first;
-      });
-      if (it == groups.end()) {
-        groups.push_back({mesh.phase_ratio, {}});
-        it = groups.end() - 1;
-      }
-      it->second.push_back(mesh.name);
-    }
-    std::ostringstream listed;
-    for (std::size_t g = 0; g < groups.size() && g < 4; ++g) {
-      listed << (g ? "; " : "") << "mesh '" << groups[g].second.front() << "'";
-      if (groups[g].second.size() > 1) listed << " and " << groups[g].second.size() - 1 << " more";
-      listed << " at " << groups[g].first;
-    }
-    const std::string ratios = listed.str();
+    const std::string ratios = MeshRatiosText(model);
     GEARDYN_THROW_UNLESS(
         FloquetPeriodMeshes(model) > 0,
         "model: the meshes run at incommensurate frequencies ("
             << ratios << " times the first mesh's): no common period of at most "
             << kMaxFloquetCommonPeriodMeshes
-            << " mesh cycles, so there is no monodromy to compute; the quasi-periodic harmonic "
-               "balance (geardyn hb) gives the steady response");
+            << " mesh cycles, so there is no monodromy to compute; ComputeFloquet (geardyn "
+               "floquet) analyses rational approximants of the ratios instead when "
+               "max_approximant_period_meshes > 0, and the quasi-periodic harmonic balance "
+               "(geardyn hb) gives the steady response");
     GEARDYN_THROW_UNLESS(options.method != FloquetMethod::kHill,
                          "method: hill expands the operator in harmonics of one mesh frequency; "
                          "the meshes run at several ("
@@ -548,6 +555,15 @@ void FinishModelFloquet(const SystemModel& model, const FloquetOptions& options,
 
 FloquetResult ComputeFloquet(const SystemModel& model, const FloquetOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  if (options.max_approximant_period_meshes > 0 && HasSeveralMeshFrequencies(model) &&
+      internal::FloquetPeriodMeshes(model) == 0) {
+    std::string why;
+    GEARDYN_THROW_UNLESS(options.IsValid(&why), why);
+    FloquetResult result =
+        internal::ComputeApproximantFloquet(model, options, internal::MeshRatiosText(model));
+    result.summary.wall_time_s = internal::SecondsSince(start);
+    return result;
+  }
   const std::vector<std::string> warnings = internal::CheckFloquetModel(model, options);
   FloquetResult result;
   // Blocks of a model with several mesh frequencies share its common period, which a block alone

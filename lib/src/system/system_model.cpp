@@ -239,6 +239,20 @@ SystemModel SystemModel::RestrictToBlock(int b) const {
   return Restrict(data_->blocks[b]);
 }
 
+SystemModel SystemModel::WithPhaseRatios(const std::vector<double>& ratios) const {
+  GEARDYN_THROW_UNLESS(ratios.size() == data_->meshes.size(),
+                       "ratios: one phase ratio per mesh wanted (" << data_->meshes.size()
+                                                                   << "), got " << ratios.size());
+  auto out = std::make_shared<Data>(*data_);
+  for (std::size_t k = 0; k < ratios.size(); ++k) {
+    GEARDYN_THROW_UNLESS(std::isfinite(ratios[k]) && ratios[k] > 0.0,
+                         "ratios[" << k << "]: must be finite and > 0, got " << ratios[k]);
+    out->meshes[k].phase_ratio = ratios[k];
+  }
+  out->id = internal::NextModelId();
+  return SystemModel(std::move(out));
+}
+
 SystemModel SystemModel::RestrictToPlanar() const {
   std::vector<int> dofs;
   for (int i = 0; i < num_dofs(); ++i) {

@@ -115,4 +115,40 @@ inline SystemModel GearedShafts(int elements, const MeshCore& core, double shaft
   return b.Build();
 }
 
+/// Options at mesh frequency f_m [Hz] with `method` and a 1e-10 tolerance.
+inline FloquetOptions FloquetAt(double f_m, FloquetMethod method) {
+  FloquetOptions o;
+  o.mesh_frequency_hz = f_m;
+  o.method = method;
+  o.tolerance = 1e-10;
+  return o;
+}
+
+// Two hand pairs that do not touch (several_frequencies_test.cpp, incommensurate_test.cpp).
+// Pair a (bodies 0, 1, mesh "a", ratio 1) and pair b (bodies 2, 3, mesh "b", ratio r), apart.
+inline SystemModel TwoSeparatePairs(const MeshCore& core_a, const MeshCore& core_b,
+                                    double ratio_b) {
+  const HandPairParams p;
+  SystemBuilder builder;
+  Vector6 kb;
+  kb << p.bearing, p.bearing, p.bearing, 0.01 * p.bearing, 0.01 * p.bearing, 0.0;
+  for (const char* pair : {"a", "b"}) {
+    const double z = pair[0] == 'a' ? 0.0 : 0.5;
+    const BodyIndex i = builder.AddBody(std::string("pinion-") + pair, DiagMass(p.m1, p.Id1, p.I1),
+                                        Vector3(0, 0, z));
+    const BodyIndex j = builder.AddBody(std::string("wheel-") + pair, DiagMass(p.m2, p.Id2, p.I2),
+                                        Vector3(p.r1 + p.r2, 0, z));
+    for (const BodyIndex body : {i, j}) {
+      builder.AddElement(std::string("bearing-") + pair + std::to_string(body.value()),
+                         ElementKind::kBearing, {body}, MatrixX(kb.asDiagonal()));
+    }
+    if (pair[0] == 'a') {
+      builder.AddMesh("a", i, j, HandPairJacobian(p), core_a);
+    } else {
+      builder.AddMesh("b", i, j, HandPairJacobian(p), core_b, std::nullopt, ratio_b, 0.4);
+    }
+  }
+  return builder.Build();
+}
+
 }  // namespace geardyn::test

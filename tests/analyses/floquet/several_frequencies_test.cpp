@@ -19,39 +19,6 @@ namespace {
 
 constexpr double kRatio = 2.0 / 3.0;
 
-// Pair a (bodies 0, 1, mesh "a", ratio 1) and pair b (bodies 2, 3, mesh "b", ratio r), apart.
-SystemModel TwoSeparatePairs(const MeshCore& core_a, const MeshCore& core_b, double ratio_b) {
-  const HandPairParams p;
-  SystemBuilder builder;
-  Vector6 kb;
-  kb << p.bearing, p.bearing, p.bearing, 0.01 * p.bearing, 0.01 * p.bearing, 0.0;
-  for (const char* pair : {"a", "b"}) {
-    const double z = pair[0] == 'a' ? 0.0 : 0.5;
-    const BodyIndex i = builder.AddBody(std::string("pinion-") + pair, DiagMass(p.m1, p.Id1, p.I1),
-                                        Vector3(0, 0, z));
-    const BodyIndex j = builder.AddBody(std::string("wheel-") + pair, DiagMass(p.m2, p.Id2, p.I2),
-                                        Vector3(p.r1 + p.r2, 0, z));
-    for (const BodyIndex body : {i, j}) {
-      builder.AddElement(std::string("bearing-") + pair + std::to_string(body.value()),
-                         ElementKind::kBearing, {body}, MatrixX(kb.asDiagonal()));
-    }
-    if (pair[0] == 'a') {
-      builder.AddMesh("a", i, j, HandPairJacobian(p), core_a);
-    } else {
-      builder.AddMesh("b", i, j, HandPairJacobian(p), core_b, std::nullopt, ratio_b, 0.4);
-    }
-  }
-  return builder.Build();
-}
-
-FloquetOptions Options(double f_m, FloquetMethod method) {
-  FloquetOptions o;
-  o.mesh_frequency_hz = f_m;
-  o.method = method;
-  o.tolerance = 1e-10;
-  return o;
-}
-
 VectorXc Powers(const VectorXc& lambda, int k) {
   VectorXc out(lambda.size());
   for (Eigen::Index i = 0; i < lambda.size(); ++i) out[i] = std::pow(lambda[i], k);
@@ -62,15 +29,15 @@ void ExpectUnionOfPowers(const MeshCore& core_a, const MeshCore& core_b, Floquet
                          double tol) {
   const double f_m = 1300.0;
   const SystemModel both = TwoSeparatePairs(core_a, core_b, kRatio);
-  const FloquetResult r = ComputeFloquet(both, Options(f_m, method));
+  const FloquetResult r = ComputeFloquet(both, FloquetAt(f_m, method));
   ASSERT_TRUE(r.summary.ok()) << r.summary.BriefReport();
   EXPECT_EQ(r.period_meshes, 3);
   EXPECT_NEAR(r.period_s, 3.0 / f_m, 1e-15);
   EXPECT_TRUE(std::any_of(r.summary.warnings.begin(), r.summary.warnings.end(),
                           [](const std::string& w) { return w.find("common period") != w.npos; }));
   // Each pair alone, at its own mesh frequency (the pair-b offset only shifts the time origin).
-  const FloquetResult a = ComputeFloquet(HandPair(core_a), Options(f_m, method));
-  const FloquetResult b = ComputeFloquet(HandPair(core_b), Options(kRatio * f_m, method));
+  const FloquetResult a = ComputeFloquet(HandPair(core_a), FloquetAt(f_m, method));
+  const FloquetResult b = ComputeFloquet(HandPair(core_b), FloquetAt(kRatio * f_m, method));
   ASSERT_TRUE(a.summary.ok() && b.summary.ok());
   ASSERT_EQ(r.multipliers.size(), a.multipliers.size() + b.multipliers.size());
   VectorXc expected(r.multipliers.size());
@@ -96,11 +63,13 @@ TEST(SeveralFrequenciesFloquet, MagnusIsTheUnionOfThePairsPowers) {
                       FloquetMethod::kMagnus, 1e-7);
 }
 
-TEST(SeveralFrequenciesFloquet, IncommensurateFrequenciesAndHillAreRefusedByName) {
+TEST(SeveralFrequenciesFloquet, IncommensurateWithoutApproximantsAndHillAreRefusedByName) {
   const SystemModel irrational =
       TwoSeparatePairs(HandSpurWaveCore(1500.0), HandSpurWaveCore(900.0), std::sqrt(2.0) / 2.0);
   try {
-    (void)ComputeFloquet(irrational, Options(1300.0, FloquetMethod::kAuto));
+    FloquetOptions refuse = FloquetAt(1300.0, FloquetMethod::kAuto);
+    refuse.max_approximant_period_meshes = 0;  // the rational approximants off
+    (void)ComputeFloquet(irrational, refuse);
     FAIL() << "expected InvalidInput";
   } catch (const InvalidInput& e) {
     EXPECT_NE(std::string(e.what()).find("incommensurate"), std::string::npos) << e.what();
@@ -108,7 +77,7 @@ TEST(SeveralFrequenciesFloquet, IncommensurateFrequenciesAndHillAreRefusedByName
   const SystemModel both =
       TwoSeparatePairs(HandSpurWaveCore(1500.0), HandSpurWaveCore(900.0), kRatio);
   try {
-    (void)ComputeFloquet(both, Options(1300.0, FloquetMethod::kHill));
+    (void)ComputeFloquet(both, FloquetAt(1300.0, FloquetMethod::kHill));
     FAIL() << "expected InvalidInput";
   } catch (const InvalidInput& e) {
     EXPECT_NE(std::string(e.what()).find("method: hill"), std::string::npos) << e.what();

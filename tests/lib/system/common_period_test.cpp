@@ -58,5 +58,24 @@ TEST(CommonPeriodTest, RejectsBadArguments) {
   EXPECT_THROW(FindCommonPeriodMeshes(model, 10, std::nan("")), InvalidInput);
 }
 
+TEST(CommonPeriodTest, WithPhaseRatiosReplacesOnlyTheRatios) {
+  // The rational approximant of the √2 train by 99/70: its period is 70; the original keeps none,
+  // and everything but the ratios (and the id) is the original's.
+  const SystemModel model = TwoMesh(std::sqrt(2.0));
+  const SystemModel approximant = model.WithPhaseRatios({1.0, 99.0 / 70.0});
+  EXPECT_EQ(FindCommonPeriodMeshes(approximant), 70);
+  EXPECT_EQ(FindCommonPeriodMeshes(model), 0);
+  EXPECT_EQ(model.meshes()[1].phase_ratio, std::sqrt(2.0));
+  EXPECT_EQ(approximant.meshes()[1].phase_ratio, 99.0 / 70.0);
+  EXPECT_EQ(approximant.meshes()[1].phase_offset, model.meshes()[1].phase_offset);
+  EXPECT_NE(approximant.id(), model.id());
+  EXPECT_EQ(approximant.num_dofs(), model.num_dofs());
+  EXPECT_EQ(approximant.period_meshes(), model.period_meshes());
+  EXPECT_EQ((approximant.DenseMass() - model.DenseMass()).norm(), 0.0);
+  EXPECT_THROW(model.WithPhaseRatios({1.0}), InvalidInput);
+  EXPECT_THROW(model.WithPhaseRatios({1.0, 0.0}), InvalidInput);
+  EXPECT_THROW(model.WithPhaseRatios({1.0, std::nan("")}), InvalidInput);
+}
+
 }  // namespace
 }  // namespace geardyn

@@ -162,8 +162,27 @@ struct FloquetOptions {
   /// Deflate the rigid-body modes (common null space of K(t) and C(t)): each gives the exact double
   /// multiplier 1 (a Jordan block) that a product or an eigen solver resolves only to √ε.
   bool deflate_rigid_modes = true;
+  /// Meshes at incommensurate frequencies (no common period of at most 10⁴ mesh cycles): the
+  /// longest common period [mesh cycles] of the rational approximants analysed instead (see
+  /// ComputeFloquet), in [0, 10⁴]; 0 refuses such a model (InvalidInput, as before issue 18).
+  std::int64_t max_approximant_period_meshes = 1000;
   /// False (with the field and value in `why`) on an invalid value.
   bool IsValid(std::string* why) const;
+};
+
+/// @brief One rational approximant of an incommensurate train (FloquetResult::approximants):
+/// every mesh ratio r_k replaced by a continued-fraction convergent p_k/q_k.
+struct FloquetApproximant {
+  std::vector<double> ratios;      ///< the approximated phase ratio of every mesh [-]
+  std::int64_t period_meshes = 0;  ///< their common period [mesh cycles]
+  /// max|r_k − p_k/q_k| over the meshes [-]: how far the approximant is from the model.
+  double ratio_error = 0.0;
+  /// max Re μ [1/s] of the flexible motion: the largest characteristic exponent (ln |λ| / T)
+  /// without the rigid-body multipliers (exactly 1), the quantity that converges as the
+  /// approximants improve (|λ| itself grows with the period).
+  double max_real_exponent = 0.0;
+  FloquetVerdict verdict = FloquetVerdict::kUndetermined;
+  double error_estimate = 0.0;  ///< the approximant's own monodromy error estimate [-]
 };
 
 // FloquetVerdict (three-valued, its rules): floquet_verdict.hpp.
@@ -202,6 +221,9 @@ struct FloquetResult {
   /// system with ζ < 1e-9.
   std::vector<UndampedMode> undamped_modes;
   MatrixX monodromy;  ///< (2n×2n) Φ(T) when options.keep_monodromy and the method forms it
+  /// Incommensurate mesh frequencies only: the rational approximants analysed, coarsest first;
+  /// the result's multipliers, period and monodromy are the last one's (see ComputeFloquet).
+  std::vector<FloquetApproximant> approximants;
   /// True when verdict is kStable.
   bool stable() const { return verdict == FloquetVerdict::kStable; }
 };
@@ -210,9 +232,27 @@ struct FloquetResult {
 /// Meshes at several commensurate frequencies (a two-stage train: r_k = p_k/q from the tooth
 /// counts) make K(θ), C(θ) periodic over their common period of q mesh cycles; the monodromy
 /// spans it (exact, not an approximation; the work grows with q) and a warning names it.
+///
+/// **Incommensurate frequencies** (no common period of at most 10⁴ cycles, e.g. r = √2/2): there
+/// is no monodromy, but a quasi-periodic system has Lyapunov exponents, and the periodic
+/// systems whose ratios are the continued-fraction convergents p_k/q_k of the r_k approach it.
+/// ComputeFloquet analyses the last three approximants whose common period is at most
+/// options.max_approximant_period_meshes (the convergents of all ratios, taken together by a
+/// growing denominator bound), reports them in FloquetResult::approximants, and returns the
+/// last one's multipliers. The convergence study gives the error estimate: the largest change of
+/// a resolved exponent's real part between the last two approximants, Δσ [1/s] (the flexible
+/// multipliers within a factor 10⁸ of the largest, in descending order: a product over a long
+/// period does not resolve the smaller ones), as a change of the multipliers over the last
+/// period, max|λ| · T · Δσ (added to the monodromy's own estimate).
+/// The verdict is the last approximant's when the last two agree, kUndetermined (with a warning)
+/// when they do not. A heuristic, not a bound: near a parametric resonance of a combination
+/// frequency an approximant can resonate where the quasi-periodic system does not, which the
+/// disagreement of successive approximants then shows (docs/design.md "Incommensurate
+/// frequencies: rational approximants").
 /// @throws InvalidInput on invalid options, a model with a nonlinear core, meshes at frequencies
-///   without a common period of at most 10⁴ mesh cycles (internal::FloquetPeriodMeshes), or
-///   method kHill with several mesh frequencies.
+///   without a common period of at most 10⁴ mesh cycles when max_approximant_period_meshes is 0
+///   or too small for two approximants (internal::FloquetPeriodMeshes), or method kHill with
+///   several mesh frequencies.
 FloquetResult ComputeFloquet(const SystemModel& model, const FloquetOptions& options);
 
 namespace internal {
@@ -222,6 +262,14 @@ namespace internal {
 /// estimated Magnus work is below a quarter of the full system's, else kMagnus; see the @file).
 /// With options.split_blocks it is applied to every block separately.
 FloquetMethod SelectFloquetMethod(const SystemModel& model, const FloquetOptions& options);
+
+/// @brief The rational approximants of a model whose meshes run at incommensurate frequencies
+/// (rational_approximants.cpp): for every growing bound Q on the denominators, each ratio's last
+/// continued-fraction convergent p/q with p ≥ 1, q ≤ Q; distinct levels only, in order, up to the
+/// first whose common period (FindCommonPeriodMeshes) exceeds max_period_meshes. Only
+/// ratios, ratio_error and period_meshes are set.
+std::vector<FloquetApproximant> RationalApproximants(const SystemModel& model,
+                                                     std::int64_t max_period_meshes);
 }  // namespace internal
 
 }  // namespace geardyn

@@ -203,6 +203,10 @@ class SystemModel {
   SystemModel Restrict(const std::vector<int>& dofs) const;
   /// @brief The planar sub-system: x, y and θz of every body (planar literature models).
   SystemModel RestrictToPlanar() const;
+  /// @brief A copy whose mesh k has the phase ratio ratios[k] (everything else the same, a new
+  /// id): the rational approximants of an incommensurate train (Floquet, issue 18).
+  /// @throws InvalidInput unless ratios has one finite entry > 0 per mesh.
+  SystemModel WithPhaseRatios(const std::vector<double>& ratios) const;
 
  private:
   // Adds Rayleigh/modal damping to C0 (system_damping.hpp).
