@@ -147,7 +147,6 @@ FloquetResult ComputeApproximantFloquet(const SystemModel& model, const FloquetO
   FloquetOptions inner = options;
   inner.max_approximant_period_meshes = 0;
   std::vector<FloquetResult> results;
-  SystemModel last;
   for (FloquetApproximant& level : levels) {
     const SystemModel approximant = model.WithPhaseRatios(level.ratios);
     FloquetResult r = ComputeFloquet(approximant, inner);
@@ -156,7 +155,6 @@ FloquetResult ComputeApproximantFloquet(const SystemModel& model, const FloquetO
     level.error_estimate = r.summary.error_estimate;
     const bool failed = !r.summary.ok();
     results.push_back(std::move(r));
-    last = approximant;
     if (failed) break;  // its status and message are the answer
   }
   FloquetResult result = std::move(results.back());
