@@ -15,7 +15,8 @@
 //   unstable ranges are warnings, and an undetermined verdict gives exit code 1
 //   (docs/design.md "Linear HB stability").
 // * Several mesh frequencies (a multi-stage train, HasSeveralMeshFrequencies): the quasi-periodic
-//   linear HB on the torus of the mesh frequencies (hb_quasi_periodic.hpp), no Floquet verdicts.
+//   HB on the torus of the mesh frequencies (hb_quasi_periodic.hpp), nonlinear with slice meshes
+//   unless --linear, no Floquet verdicts.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -290,15 +291,15 @@ HbRun RunHbAnalysis(const Scene& scene, const HbRunSettings& opts, const std::st
   const SceneSystem built = BuildSceneSystem(scene, system_options);
   const bool has_slices = built.model.time_dependence() == TimeDependence::kNonlinear;
   if (HasSeveralMeshFrequencies(built.model)) {
-    // A two-stage train: the quasi-periodic linear HB on the torus of the mesh frequencies.
-    GEARDYN_THROW_UNLESS(!opts.nonlinear && (!has_slices || opts.settings.linear),
-                         (opts.nonlinear ? "--nonlinear" : "mesh model \"slices\"")
-                             << ": the meshes of this scene run at several frequencies (a "
-                                "multi-stage train), and the nonlinear harmonic balance needs one "
-                                "mesh frequency; give --linear for the quasi-periodic linear "
-                                "harmonic balance (slice meshes linearized with every slice "
-                                "loaded)");
-    return RunQuasiPeriodicHb(opts, scene, built, frequencies, out_dir, progress);
+    // A two-stage train: the quasi-periodic HB on the torus of the mesh frequencies, nonlinear
+    // (contact loss) with slice meshes unless --linear.
+    const std::string name = scene.meshes.empty() ? "NAME" : scene.meshes.front().name;
+    GEARDYN_THROW_UNLESS(!opts.nonlinear || has_slices,
+                         "--nonlinear: the scene has no slice mesh (contact loss needs the slice "
+                         "model); use model = \"slices\" on a mesh, e.g. --set mesh."
+                             << name << ".model=\"slices\"");
+    return RunQuasiPeriodicHb(opts, scene, built, frequencies, out_dir, progress,
+                              has_slices && !opts.settings.linear);
   }
   if (opts.nonlinear) {
     GEARDYN_THROW_UNLESS(has_slices || !scene.oscillator,

@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <sstream>
 
+#include "geardyn/analyses/nonlinear_quasi_periodic_hb.hpp"
 #include "geardyn/analyses/quasi_periodic_hb.hpp"
 #include "geardyn/cli.hpp"
 #include "geardyn/common/check.hpp"
@@ -77,42 +79,116 @@ double RmsChange(const QuasiPeriodicHbResult& a, const QuasiPeriodicHbResult& b)
   return scale > 0.0 ? change / scale : 0.0;
 }
 
-// One point: a fixed H, or H = 8, 16, … until the RMS settles to `tolerance`.
-QuasiPeriodicHbResult SolvePoint(const SystemModel& model, double f_m, int harmonics,
-                                 double tolerance) {
-  QuasiPeriodicHbOptions options;
-  if (harmonics > 0) {
-    options.total_order = harmonics;
-    return SolveQuasiPeriodicHb(model, f_m, options);
+// One point of either model: the torus result, and for the nonlinear model the contact.
+struct QpPoint {
+  QuasiPeriodicHbResult torus;
+  std::vector<NonlinearQuasiPeriodicMeshContact> contact;  // empty for the linear model
+  int newton_iterations = 0;
+  std::string initial_guess;
+};
+
+// Solves one point at total order H: the linear model, or the nonlinear one from the previous
+// frequency's solution at the same H (`guesses`, updated).
+QpPoint SolveAtOrder(const SystemModel& model, double f_m, int H, bool nonlinear,
+                     std::map<int, MatrixXc>* guesses) {
+  QpPoint point;
+  if (!nonlinear) {
+    QuasiPeriodicHbOptions options;
+    options.total_order = H;
+    point.torus = SolveQuasiPeriodicHb(model, f_m, options);
+    return point;
   }
-  options.total_order = kFirstOrder / 2;
-  QuasiPeriodicHbResult previous = SolveQuasiPeriodicHb(model, f_m, options);
+  NonlinearQuasiPeriodicHbOptions options;
+  options.torus.total_order = H;
+  const auto it = guesses->find(H);
+  NonlinearQuasiPeriodicHbResult r = SolveNonlinearQuasiPeriodicHb(
+      model, f_m, options, it == guesses->end() ? nullptr : &it->second);
+  if (r.torus.summary.ok()) (*guesses)[H] = r.coordinate_harmonics;
+  point.torus = std::move(r.torus);
+  point.contact = std::move(r.contact);
+  point.newton_iterations = r.newton_iterations;
+  point.initial_guess = r.initial_guess;
+  return point;
+}
+
+double EstimateBytes(const SystemModel& model, int H, bool nonlinear) {
+  if (!nonlinear) {
+    QuasiPeriodicHbOptions options;
+    options.total_order = H;
+    return EstimateQuasiPeriodicHbBytes(model, options);
+  }
+  NonlinearQuasiPeriodicHbOptions options;
+  options.torus.total_order = H;
+  return EstimateNonlinearQuasiPeriodicHbBytes(model, options);
+}
+
+// One point: a fixed H, or H = 8, 16, … (from first_order/2 … when tooth errors need more)
+// until the RMS settles to `tolerance`.
+QpPoint SolvePoint(const SystemModel& model, double f_m, int harmonics, double tolerance,
+                   int first_order, bool nonlinear, std::map<int, MatrixXc>* guesses) {
+  if (harmonics > 0) return SolveAtOrder(model, f_m, harmonics, nonlinear, guesses);
+  int order = first_order;
+  QpPoint previous = SolveAtOrder(model, f_m, order, nonlinear, guesses);
   double last_change = 0.0;
   while (true) {
-    QuasiPeriodicHbOptions next = options;
-    next.total_order = 2 * options.total_order;
-    if (next.total_order > kMaxQuasiPeriodicOrder ||
-        EstimateQuasiPeriodicHbBytes(model, next) > kSearchBudgetBytes) {
-      previous.summary.status = Status::kToleranceNotMet;
+    const int next = 2 * order;
+    const double bytes =
+        next > kMaxQuasiPeriodicOrder ? 0.0 : EstimateBytes(model, next, nonlinear);
+    if (next > kMaxQuasiPeriodicOrder || bytes > kSearchBudgetBytes) {
+      Summary& summary = previous.torus.summary;
+      if (!summary.ok()) return previous;
+      summary.status = Status::kToleranceNotMet;
       std::ostringstream why;
       why << "quasi-periodic harmonic balance: the RMS DTE changed by " << last_change
-          << " from H = " << options.total_order / 2 << " to " << options.total_order
-          << ", above the tolerance " << tolerance
-          << ", and the search stops before H = " << next.total_order << " (about "
-          << EstimateQuasiPeriodicHbBytes(model, next) / 1e9
-          << " GB of factors); give --harmonics for a higher order, or a looser --tolerance";
-      previous.summary.message = why.str();
-      previous.summary.error_estimate = last_change;
+          << " from H = " << order / 2 << " to " << order << ", above the tolerance " << tolerance
+          << ", and the search stops before H = " << next << " (about " << bytes / 1e9 << " GB"
+          << (nonlinear ? " for the dense Newton matrix" : " of factors")
+          << "); give --harmonics for a higher order, or a looser --tolerance";
+      summary.message = why.str();
+      summary.error_estimate = last_change;
       return previous;
     }
-    options = next;
-    QuasiPeriodicHbResult current = SolveQuasiPeriodicHb(model, f_m, options);
-    if (!current.summary.ok() || !previous.summary.ok()) return current;
-    last_change = RmsChange(current, previous);
-    current.summary.error_estimate = last_change;
+    order = next;
+    QpPoint current = SolveAtOrder(model, f_m, order, nonlinear, guesses);
+    if (!current.torus.summary.ok() || !previous.torus.summary.ok()) return current;
+    last_change = RmsChange(current.torus, previous.torus);
+    current.torus.summary.error_estimate = last_change;
     if (last_change <= tolerance) return current;
     previous = std::move(current);
   }
+}
+
+// Appends per-mesh contact columns to the CSV of FormatHbCsv (one row per point, in order).
+std::string AppendContactColumns(const std::string& csv, const SystemModel& model,
+                                 const std::vector<QpPoint>& points) {
+  std::istringstream in(csv);
+  std::ostringstream out;
+  std::string line;
+  std::size_t row = 0;
+  while (std::getline(in, line)) {
+    out << line;
+    if (row == 0) {
+      for (const SystemMesh& m : model.meshes()) {
+        out << "," << m.name << ":contact_loss_fraction," << m.name << ":min_force_n," << m.name
+            << ":max_force_n";
+      }
+    } else if (row - 1 < points.size()) {
+      const QpPoint& p = points[row - 1];
+      for (std::size_t k = 0; k < static_cast<std::size_t>(model.num_meshes()); ++k) {
+        if (k < p.contact.size() && p.torus.summary.ok()) {
+          char cells[96];
+          std::snprintf(cells, sizeof(cells), ",%.6g,%.6g,%.6g", p.contact[k].contact_loss_fraction,
+                        p.contact[k].min_force, p.contact[k].max_force);
+          out << cells;
+        } else {
+          out << ",,,";
+        }
+      }
+    }
+    out << "\n";
+    ++row;
+  }
+  return out.str();
 }
 
 std::string OrderText(const std::vector<int>& order) {
@@ -125,7 +201,7 @@ std::string OrderText(const std::vector<int>& order) {
 
 HbRun RunQuasiPeriodicHb(const HbRunSettings& opts, const Scene& scene, const SceneSystem& built,
                          const std::vector<double>& frequencies, const std::string& out_dir,
-                         const ProgressLine& progress) {
+                         const ProgressLine& progress, bool nonlinear) {
   const HbSettings& settings = opts.settings;
   GEARDYN_THROW_UNLESS(settings.harmonics == 0 || !opts.tolerance_given,
                        "--tolerance: chooses the total order (H = 8, 16, ... until the RMS DTE "
@@ -143,15 +219,60 @@ HbRun RunQuasiPeriodicHb(const HbRunSettings& opts, const Scene& scene, const Sc
   if (settings.harmonics > 0) {
     probe.total_order = settings.harmonics;
     // Refused here, before any point, with the estimate (exit code 2).
-    const double bytes = EstimateQuasiPeriodicHbBytes(model, probe);
-    GEARDYN_THROW_UNLESS(
-        bytes <= probe.memory_limit_bytes,
-        "--harmonics: a total order of "
-            << settings.harmonics << " on the " << FindQuasiPeriodicBases(model, 1.0, probe).size()
-            << " mesh frequencies of this scene would need about " << bytes / 1e9 << " GB (limit "
-            << probe.memory_limit_bytes / 1e9 << " GB); lower --harmonics");
+    const double bytes = EstimateBytes(model, settings.harmonics, nonlinear);
+    GEARDYN_THROW_UNLESS(bytes <= probe.memory_limit_bytes,
+                         "--harmonics: a total order of "
+                             << settings.harmonics << " on the "
+                             << FindQuasiPeriodicBases(model, 1.0, probe).size()
+                             << " mesh frequencies of this scene would need about " << bytes / 1e9
+                             << " GB (limit " << probe.memory_limit_bytes / 1e9 << " GB"
+                             << (nonlinear ? ", the nonlinear model's dense Newton matrix" : "")
+                             << "); lower --harmonics");
   }
-  std::vector<QuasiPeriodicHbResult> results;
+  // Tooth errors repeating every P mesh cycles put the mesh frequency at order P of its base.
+  std::int64_t longest = 1;
+  std::string longest_mesh;
+  for (const QuasiPeriodicBase& b : FindQuasiPeriodicBases(model, 1.0, probe)) {
+    if (b.period_meshes <= longest) continue;
+    longest = b.period_meshes;
+    for (int k : b.meshes) {
+      const SystemMesh& mesh = model.meshes()[static_cast<std::size_t>(k)];
+      if (PeriodMeshes(mesh.core) > 1) longest_mesh = mesh.name;
+    }
+  }
+  if (longest > 1) {
+    const std::string why =
+        "--harmonics: the tooth errors of mesh '" + longest_mesh + "' repeat every " +
+        std::to_string(longest) + " mesh cycles, so the total order counts harmonics of f_mesh/" +
+        std::to_string(longest) + " on its base and the mesh frequency is order " +
+        std::to_string(longest);
+    const std::string remedy =
+        "leave the tooth errors out of the multi-stage harmonic balance (`geardyn simulate` "
+        "takes them)";
+    GEARDYN_THROW_UNLESS(
+        longest <= kMaxQuasiPeriodicOrder,
+        why << ", above the largest total order " << kMaxQuasiPeriodicOrder << "; " << remedy);
+    GEARDYN_THROW_UNLESS(settings.harmonics == 0 || settings.harmonics >= longest,
+                         why << ": H = " << settings.harmonics << " would leave it out; give "
+                             << "--harmonics " << longest << " or more, or " << remedy);
+  }
+  const int first_order = static_cast<int>(std::max<std::int64_t>(kFirstOrder / 2, longest));
+  if (settings.harmonics == 0 && longest > 1) {
+    const double bytes = EstimateBytes(model, first_order, nonlinear);
+    GEARDYN_THROW_UNLESS(bytes <= kSearchBudgetBytes,
+                         "--harmonics: the tooth errors of mesh '"
+                             << longest_mesh << "' repeat every " << longest
+                             << " mesh cycles, so the quasi-periodic harmonic balance needs a "
+                                "total order of at least "
+                             << longest << " (the mesh frequency's order on its base), about "
+                             << bytes / 1e9
+                             << " GB on this scene; leave the tooth errors out of the multi-stage "
+                                "harmonic balance (`geardyn simulate` takes them), or give "
+                                "--harmonics "
+                             << longest << " to try");
+  }
+  std::vector<QpPoint> points;
+  std::map<int, MatrixXc> guesses;  // the nonlinear solution per H at the previous frequency
   HbSweepResult sweep;
   for (std::size_t i = 0; i < frequencies.size(); ++i) {
     if (Interrupted()) {
@@ -159,9 +280,10 @@ HbRun RunQuasiPeriodicHb(const HbRunSettings& opts, const Scene& scene, const Sc
       sweep.summary.message = "interrupted";
       break;
     }
-    results.push_back(SolvePoint(model, frequencies[i], settings.harmonics,
-                                 opts.tolerance_given ? settings.tolerance : kDefaultTolerance));
-    const QuasiPeriodicHbResult& r = results.back();
+    points.push_back(SolvePoint(model, frequencies[i], settings.harmonics,
+                                opts.tolerance_given ? settings.tolerance : kDefaultTolerance,
+                                first_order, nonlinear, &guesses));
+    const QuasiPeriodicHbResult& r = points.back().torus;
     sweep.points.push_back(ToHbResult(r));
     sweep.summary.wall_time_s += r.summary.wall_time_s;
     sweep.summary.error_estimate = std::max(sweep.summary.error_estimate, r.summary.error_estimate);
@@ -183,17 +305,25 @@ HbRun RunQuasiPeriodicHb(const HbRunSettings& opts, const Scene& scene, const Sc
     }
   }
   const std::string note =
-      "no Floquet verdicts: the meshes run at several frequencies (the points are not verified "
-      "stable); `geardyn floquet` forms the monodromy over their common period when the ratios "
-      "are rational, at a cost of that many mesh cycles per frequency";
+      nonlinear
+          ? "no stability verdicts: a quasi-periodic response has no period, so the nonlinear "
+            "points have no Floquet multipliers (they are not verified stable); `geardyn "
+            "floquet` gives the parametric stability of the linear model (over the common "
+            "period, or by rational approximants of incommensurate ratios)"
+          : "no Floquet verdicts: the meshes run at several frequencies (the points are not "
+            "verified stable); `geardyn floquet` gives the parametric stability over their "
+            "common period, or by rational approximants of incommensurate ratios, at a cost of "
+            "that many mesh cycles per frequency";
   sweep.summary.warnings.push_back(note);
 
-  nlohmann::json report = MakeHbReport(scene.source, settings, sweep, built.warnings, nullptr);
-  report["mode"] = "linear, quasi-periodic";
+  HbSettings shown = settings;  // the report's tolerance is the one the search used
+  if (!opts.tolerance_given) shown.tolerance = kDefaultTolerance;
+  nlohmann::json report = MakeHbReport(scene.source, shown, sweep, built.warnings, nullptr);
+  report["mode"] = nonlinear ? "nonlinear, quasi-periodic" : "linear, quasi-periodic";
   report["stability_note"] = note;
   json bases = json::array();
-  if (!results.empty()) {
-    for (const QuasiPeriodicBase& b : results.front().bases) {
+  if (!points.empty()) {
+    for (const QuasiPeriodicBase& b : points.front().torus.bases) {
       json names = json::array();
       for (int k : b.meshes) names.push_back(model.meshes()[static_cast<std::size_t>(k)].name);
       bases.push_back({{"phase_ratio", b.phase_ratio},
@@ -204,14 +334,25 @@ HbRun RunQuasiPeriodicHb(const HbRunSettings& opts, const Scene& scene, const Sc
   }
   report["quasi_periodic"] = {{"bases", bases},
                               {"truncation", "total order |k|_1 <= H (harmonics column)"}};
-  for (std::size_t i = 0; i < results.size(); ++i) {
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const QuasiPeriodicHbResult& result = points[i].torus;
     json& p = report["points"][i];
-    p["method"] = "quasi_periodic";
-    p["unknowns"] = results[i].summary.counters.count("unknowns")
-                        ? results[i].summary.counters.at("unknowns")
-                        : 0;
-    for (std::size_t k = 0; k < results[i].meshes.size(); ++k) {
-      const QuasiPeriodicMeshOutput& m = results[i].meshes[k];
+    p["method"] = nonlinear ? "quasi_periodic_nonlinear" : "quasi_periodic";
+    p["unknowns"] =
+        result.summary.counters.count("unknowns") ? result.summary.counters.at("unknowns") : 0;
+    if (nonlinear) {
+      p["newton_iterations"] = points[i].newton_iterations;
+      p["initial_guess"] = points[i].initial_guess;
+    }
+    for (std::size_t k = 0; k < result.meshes.size(); ++k) {
+      const QuasiPeriodicMeshOutput& m = result.meshes[k];
+      if (k < points[i].contact.size()) {
+        const NonlinearQuasiPeriodicMeshContact& c = points[i].contact[k];
+        p["meshes"][k]["contact_loss_fraction"] = c.contact_loss_fraction;
+        p["meshes"][k]["back_contact"] = c.back_contact;
+        p["meshes"][k]["min_force_n"] = c.min_force;
+        p["meshes"][k]["max_force_n"] = c.max_force;
+      }
       json lines = json::array();
       for (std::size_t l = 0; l < m.lines.size() && l < kReportedLines; ++l) {
         lines.push_back({{"order", m.lines[l].order},
@@ -228,8 +369,8 @@ HbRun RunQuasiPeriodicHb(const HbRunSettings& opts, const Scene& scene, const Sc
   std::ostringstream text;
   text << FormatHbText(report);
   text << "quasi-periodic: " << bases.size() << " mesh frequencies (bases)";
-  if (!results.empty()) {
-    text << " at f_mesh = " << results.front().mesh_frequency_hz << " Hz of the first:";
+  if (!points.empty()) {
+    text << " at f_mesh = " << points.front().torus.mesh_frequency_hz << " Hz of the first:";
     for (std::size_t b = 0; b < bases.size(); ++b) {
       std::string names;
       for (const auto& n : bases[b]["meshes"])
@@ -242,9 +383,21 @@ HbRun RunQuasiPeriodicHb(const HbRunSettings& opts, const Scene& scene, const Sc
     }
   }
   text << "\n";
-  if (results.size() == 1 && results.front().summary.ok()) {
+  if (points.size() == 1 && points.front().torus.summary.ok()) {
+    const QpPoint& point = points.front();
+    if (nonlinear) {
+      text << "contact (fraction of the torus without drive-flank contact, force range):\n";
+      for (std::size_t k = 0; k < point.contact.size(); ++k) {
+        char line[200];
+        std::snprintf(line, sizeof(line), "  %s: loss %.4f, F_eta %.6g .. %.6g N%s\n",
+                      point.torus.meshes[k].name.c_str(), point.contact[k].contact_loss_fraction,
+                      point.contact[k].min_force, point.contact[k].max_force,
+                      point.contact[k].back_contact ? ", back flank hit" : "");
+        text << line;
+      }
+    }
     text << "largest DTE lines (order per base, frequency, amplitude):\n";
-    for (const QuasiPeriodicMeshOutput& m : results.front().meshes) {
+    for (const QuasiPeriodicMeshOutput& m : point.torus.meshes) {
       text << "  " << m.name << ":";
       for (std::size_t l = 0; l < m.lines.size() && l < kTextLines; ++l) {
         char line[96];
@@ -257,16 +410,21 @@ HbRun RunQuasiPeriodicHb(const HbRunSettings& opts, const Scene& scene, const Sc
     }
   }
   if (!out_dir.empty()) {
-    WriteOutputFile(out_dir, "hb.json", report.dump(2) + "\n");
-    WriteOutputFile(out_dir, "hb.csv", FormatHbCsv(sweep, nullptr));
-    WriteOutputFile(out_dir, "hb_rms_dte.svg",
+    // The nonlinear model writes nhb.* as the periodic nonlinear path does.
+    const std::string stem = nonlinear ? "nhb" : "hb";
+    WriteOutputFile(out_dir, stem + ".json", report.dump(2) + "\n");
+    const std::string csv = FormatHbCsv(sweep, nullptr);
+    WriteOutputFile(out_dir, stem + ".csv",
+                    nonlinear ? AppendContactColumns(csv, model, points) : csv);
+    WriteOutputFile(out_dir, stem + "_rms_dte.svg",
                     RenderHbPlot(sweep,
-                                 "RMS DTE (quasi-periodic linear harmonic balance, no stability "
-                                 "verdict): " +
-                                     scene.source,
+                                 std::string("RMS DTE (quasi-periodic ") +
+                                     (nonlinear ? "nonlinear" : "linear") +
+                                     " harmonic balance, no stability verdict): " + scene.source,
                                  nullptr));
   }
   HbRun run;
+  run.nonlinear = nonlinear;
   run.report = std::move(report);
   run.text = text.str();
   run.exit_code = sweep.summary.ok()                             ? int{kExitOk}

@@ -139,7 +139,10 @@ def hb(scene: SceneLike, *, mesh_frequency: str | float | Sequence[float] | None
     """``geardyn hb``: steady-state DTE, mesh and bearing forces over mesh frequency.
 
     Nonlinear (contact loss, continuation) when a mesh has ``model = "slices"``, else linear
-    (with the Floquet verdict of every point unless ``stability="none"``).
+    (with the Floquet verdict of every point unless ``stability="none"``). A scene whose meshes
+    run at several frequencies (a multi-stage train) is solved on the torus of its mesh
+    frequencies (``harmonics`` is then the total order; nonlinear with slice meshes, a sweep
+    from point to point, no stability verdicts).
 
     Args:
         mesh_frequency: one frequency [Hz], "lo:hi:n" or (lo, hi, n); default 0.2 … 2.5 times

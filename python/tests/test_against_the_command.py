@@ -5,6 +5,7 @@ report's numbers, and ``exit_code`` the command's exit code."""
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -12,6 +13,7 @@ import pytest
 import geardyn
 from conftest import assert_same, cli_json, run_cli
 
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 RIG = "builtin:kahraman-blankenship-rig"
 PAIR = "builtin:helical-pair"
 SLICES = ["mesh.pinion-wheel.model=slices", "mesh.pinion-wheel.center_distance=0.1502",
@@ -94,6 +96,21 @@ def test_nonlinear_hb_trace():
     np.testing.assert_allclose(py.rms_dte_m["pinion-wheel"],
                                [p["meshes"][0]["rms_dte_m"] for p in cli["points"]], rtol=1e-9)
     assert py.jumps == cli["jumps"]
+
+
+def test_nonlinear_quasi_periodic_hb_on_the_two_stage_train():
+    """Slice meshes on a train with two mesh frequencies: the nonlinear HB on the torus."""
+    path = str(EXAMPLES / "multi-stage" / "wind-turbine-two-stage.toml")
+    overrides = ["mesh.sun-planet.model=slices", "mesh.planet-ring.model=slices",
+                 "mesh.hs-pinion-hs-wheel.model=slices"]
+    py = geardyn.hb(geardyn.Scene.from_file(path, overrides), mesh_frequency=208.37, harmonics=4)
+    cli = cli_json("hb", path, *sets(overrides), "--mesh-frequency", "208.37", "--harmonics", "4")
+    assert py.nonlinear and cli["mode"] == "nonlinear, quasi-periodic"
+    assert_same(py.report, cli, rel=1e-9)
+    rows = cli["points"][0]["meshes"]
+    assert all(m["contact_loss_fraction"] == 0.0 for m in rows)
+    np.testing.assert_allclose(py.rms_dte_m["hs-pinion-hs-wheel"], [rows[0]["rms_dte_m"]],
+                               rtol=1e-9)
 
 
 def test_stability_chart_from_a_text_scene_equals_the_file_chart(tmp_path):

@@ -27,6 +27,7 @@
 #include "geardyn/system/mesh_core.hpp"
 #include "geardyn/system/system_harmonics.hpp"
 #include "hb_internal.hpp"
+#include "torus_harmonics.hpp"
 
 namespace geardyn {
 namespace {
@@ -45,45 +46,7 @@ std::string FormatG(double x) {
   return s.str();
 }
 
-// The kept orders κ (|κ|_1 ≤ H) and their index.
-class HarmonicSet {
- public:
-  HarmonicSet(int d, int H) : d_(d), H_(H) {
-    std::vector<int> k(static_cast<std::size_t>(d), 0);
-    Enumerate(0, H, &k);
-    for (std::size_t i = 0; i < orders_.size(); ++i) index_[Key(orders_[i])] = static_cast<int>(i);
-  }
-  int size() const { return static_cast<int>(orders_.size()); }
-  const std::vector<int>& order(int i) const { return orders_[static_cast<std::size_t>(i)]; }
-  /// Index of κ, −1 when |κ|_1 > H.
-  int Find(const std::vector<int>& k) const {
-    int norm = 0;
-    for (int v : k) norm += std::abs(v);
-    if (norm > H_) return -1;
-    return index_.at(Key(k));
-  }
-
- private:
-  void Enumerate(int axis, int budget, std::vector<int>* k) {
-    if (axis == d_) {
-      orders_.push_back(*k);
-      return;
-    }
-    for (int v = -budget; v <= budget; ++v) {
-      (*k)[static_cast<std::size_t>(axis)] = v;
-      Enumerate(axis + 1, budget - std::abs(v), k);
-    }
-    (*k)[static_cast<std::size_t>(axis)] = 0;
-  }
-  std::int64_t Key(const std::vector<int>& k) const {
-    std::int64_t key = 0;
-    for (int v : k) key = key * (2 * H_ + 1) + (v + H_);
-    return key;
-  }
-  int d_, H_;
-  std::vector<std::vector<int>> orders_;
-  std::unordered_map<std::int64_t, int> index_;
-};
+using internal::HarmonicSet;
 
 std::int64_t Binomial(int n, int k) {
   if (k < 0 || k > n) return 0;
@@ -162,6 +125,30 @@ void CheckModel(const SystemModel& model, std::vector<std::string>* warnings) {
 }
 
 }  // namespace
+
+namespace internal {
+
+void CheckOrderCoversMeshFrequencies(const SystemModel& model,
+                                     const std::vector<QuasiPeriodicBase>& bases, int total_order,
+                                     const char* field) {
+  for (const QuasiPeriodicBase& b : bases) {
+    if (b.period_meshes <= total_order) continue;
+    std::string names;
+    for (int k : b.meshes) {
+      const SystemMesh& mesh = model.meshes()[static_cast<std::size_t>(k)];
+      if (PeriodMeshes(mesh.core) > 1) names += (names.empty() ? "'" : ", '") + mesh.name + "'";
+    }
+    GEARDYN_THROW_UNLESS(
+        false, field << ": H = " << total_order << " counts harmonics of f_mesh/" << b.period_meshes
+                     << " on the base of mesh " << names << " (its tooth errors repeat every "
+                     << b.period_meshes << " mesh cycles), so the mesh frequency is order "
+                     << b.period_meshes << " and H = " << total_order
+                     << " would leave it out; H must be at least " << b.period_meshes
+                     << " (or leave the tooth errors out of this analysis)");
+  }
+}
+
+}  // namespace internal
 
 bool QuasiPeriodicHbOptions::IsValid(std::string* why) const {
   std::ostringstream msg;
@@ -273,6 +260,8 @@ QuasiPeriodicHbResult SolveQuasiPeriodicHb(const SystemModel& model, double mesh
   result.bases = FindQuasiPeriodicBases(model, mesh_frequency_hz, options);
   const int d = static_cast<int>(result.bases.size());
   const int H = options.total_order;
+  internal::CheckOrderCoversMeshFrequencies(model, result.bases, H,
+                                            "QuasiPeriodicHbOptions::total_order");
   const double bytes = EstimateQuasiPeriodicHbBytes(model, options);
   GEARDYN_THROW_UNLESS(bytes <= options.memory_limit_bytes,
                        "QuasiPeriodicHbOptions::total_order: H = "

@@ -29,44 +29,35 @@ MeshForceLaw::MeshForceLaw(const SystemModel& model, std::vector<MeshForceTerm> 
   slice_k_.resize(T);
   slice_e_.resize(T);
   // Contact-branch offset: θ-mean of g̃(0, θ) = −mean(K2 ε) (linear) or −Σ_s mean(k_s e_s)
-  // [1, −σ_s] (slices, every slice loaded). Linear cores: the exact mean of the load channel
-  // (ExpandMeshHarmonics: sinc sums for steps, exact for Fourier series); slices without
-  // separation: zero; slices with separation: the rectangle rule on 256·P samples (exact for
-  // steps whose breakpoints fall on the grid, O(1/(256 P)) otherwise).
+  // [1, −σ_s] (slices, every slice loaded), each over its own mesh's period (the meshes may run
+  // at several frequencies: the quasi-periodic HB). Linear cores: the exact mean of the load
+  // channel (ExpandOwnPhaseMeshHarmonics: sinc sums for steps, exact for Fourier series); slices
+  // without separation: zero; slices with separation: the rectangle rule on 256·P_k samples of
+  // the mesh's own phase (exact for steps whose breakpoints fall on the grid, O(1/(256 P_k))
+  // otherwise).
   contact_offset_ = VectorX::Zero(n_);
-  bool any_linear = false, any_separation = false;
   for (const MeshForceTerm& term : terms_) {
-    const SliceMeshCore* core = AsSlice(model_.meshes()[term.mesh]);
-    any_linear = any_linear || core == nullptr;
-    any_separation = any_separation || (core != nullptr && core->separation().has_value());
-  }
-  if (any_linear) {
-    const std::vector<MeshHarmonics> harmonics = ExpandMeshHarmonics(model_, 0);
-    for (const MeshForceTerm& term : terms_) {
-      if (AsSlice(model_.meshes()[term.mesh]) != nullptr) continue;
-      const Vector2 mean = harmonics[static_cast<size_t>(term.mesh)].load[0].real();
+    const SystemMesh& mesh = model_.meshes()[term.mesh];
+    const SliceMeshCore* core = AsSlice(mesh);
+    if (core == nullptr) {
+      const Vector2 mean = ExpandOwnPhaseMeshHarmonics(mesh, 0).load[0].real();
       contact_offset_.segment(term.first, term.count) = -mean.head(term.count);
+      continue;
     }
-  }
-  if (any_separation) {
-    const int samples = 256 * static_cast<int>(model.period_meshes());
-    VectorX phase(samples);
+    if (!core->separation()) continue;
+    const std::int64_t period = PeriodMeshes(mesh.core);
+    const int samples = 256 * static_cast<int>(period);
+    const int N = core->num_slices();
+    VectorX k(N), e(N);
+    Vector2 mean = Vector2::Zero();
     for (int s = 0; s < samples; ++s) {
-      phase(s) = 2.0 * std::numbers::pi * static_cast<double>(model.period_meshes()) * s / samples;
+      const double theta =
+          2.0 * std::numbers::pi * static_cast<double>(period) * s / samples + mesh.phase_offset;
+      geardyn::Evaluate(core->stiffness(), theta, k);
+      geardyn::Evaluate(*core->separation(), theta, e);
+      for (int i = 0; i < N; ++i) mean += k(i) * e(i) * Vector2(1.0, -core->sigma()(i));
     }
-    UpdateCache(phase);
-    for (int t = 0; t < T; ++t) {
-      const MeshForceTerm& term = terms_[t];
-      const SliceMeshCore* core = AsSlice(model_.meshes()[term.mesh]);
-      if (core == nullptr || !core->separation()) continue;
-      Vector2 mean = Vector2::Zero();
-      for (int s = 0; s < samples; ++s) {
-        for (int i = 0; i < core->num_slices(); ++i) {
-          mean += slice_k_[t](i, s) * slice_e_[t](i, s) * Vector2(1.0, -core->sigma()(i));
-        }
-      }
-      contact_offset_.segment(term.first, term.count) = -(mean / samples).head(term.count);
-    }
+    contact_offset_.segment(term.first, term.count) = -(mean / samples).head(term.count);
   }
 }
 

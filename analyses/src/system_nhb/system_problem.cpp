@@ -1,6 +1,8 @@
 /// @file
 /// @brief MakeSystemNhbProblem (system_nonlinear_hb.hpp): nonlinear coordinates per mesh, the
 /// mean linear part, and the exact reduction q = T z that removes the rigid-body modes.
+#include "system_nhb/system_problem.hpp"
+
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
@@ -35,12 +37,23 @@ int CoordinateCount(const SystemMesh& mesh, const VectorX& zeta_row) {
   return core.level() == MeshCoreLevel::kBlankenshipSingh && zeta_moves ? 2 : 1;
 }
 
-/// θ-mean of the damping C(θ) = C0 + Σ Gᵀ C2(θ_k) G from the mesh harmonics m = 0
-/// (ExpandSystemHarmonics): exact closed form for stepwise cores, the trigonometric
+/// θ-mean of the damping C(θ) = C0 + Σ Gᵀ C2(θ_k) G from each mesh's own-phase harmonic 0
+/// (ExpandOwnPhaseMeshHarmonics): exact closed form for stepwise cores, the trigonometric
 /// interpolant's mean on ≥ 256 samples per core period otherwise — no dense assembly per sample,
-/// and over the core's own period, not the hunting period of the forcing.
+/// over the core's own period (not the hunting period of the forcing), and valid when the
+/// meshes run at several frequencies.
 MatrixX MeanDamping(const SystemModel& model) {
-  return ExpandSystemHarmonics(model, 0).damping[0].real();
+  MatrixX C = model.DenseConstantDamping();
+  for (const SystemMesh& mesh : model.meshes()) {
+    const Matrix2 c2 = ExpandOwnPhaseMeshHarmonics(mesh, 0).damping[0].real();
+    const Eigen::Matrix<double, 12, 12> cb = mesh.G.transpose() * c2 * mesh.G;
+    for (int a = 0; a < 12; ++a) {
+      for (int c = 0; c < 12; ++c) {
+        if (mesh.dofs[a] >= 0 && mesh.dofs[c] >= 0) C(mesh.dofs[a], mesh.dofs[c]) += cb(a, c);
+      }
+    }
+  }
+  return C;
 }
 
 }  // namespace
@@ -51,6 +64,16 @@ SystemNhbProblem MakeSystemNhbProblem(const SystemModel& model) {
                        "meshes (nothing is nonlinear; use the linear "
                        "harmonic balance)");
   CheckSingleMeshFrequency(model, "nonlinear harmonic balance");
+  return internal::BuildSystemNhbProblem(model);
+}
+
+namespace internal {
+
+SystemNhbProblem BuildSystemNhbProblem(const SystemModel& model) {
+  GEARDYN_THROW_UNLESS(model.num_meshes() > 0,
+                       "nonlinear harmonic balance: the model has no "
+                       "meshes (nothing is nonlinear; use the linear "
+                       "harmonic balance)");
   const int N = model.num_dofs();
   SystemNhbProblem out;
   out.period_meshes = static_cast<int>(model.period_meshes());
@@ -187,4 +210,5 @@ SystemNhbProblem MakeSystemNhbProblem(const SystemModel& model) {
   return out;
 }
 
+}  // namespace internal
 }  // namespace geardyn
