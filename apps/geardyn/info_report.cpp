@@ -33,7 +33,20 @@ const char* HandName(HelixHand hand) {
   return "none";
 }
 
-json GearReport(const Scene& scene, const GearDef& def, const GearGeometry& g) {
+json GearReport(const Scene& scene, const GearDef& def, const GearGeometry& g,
+                const MeshDef& mesh) {
+  if (g.kind == GearKind::kRack) {
+    // It translates with its pinion's pitch line: v = Ω_pinion r_1 along Z × ê.
+    return {{"name", def.name},
+            {"rack", true},
+            {"hand", HandName(g.hand)},
+            {"tip_thickness_normal", g.tip_thickness_normal},
+            {"face_width", g.face_width},
+            {"mass", def.mass ? json(*def.mass) : json(nullptr)},
+            {"inertia", def.inertia ? json(*def.inertia) : json(nullptr)},
+            {"speed_m_per_s",
+             scene.GearSpeed(mesh.pinion) * mesh.geometry.pinion.operating_pitch_radius}};
+  }
   return {{"name", def.name},
           {"teeth", g.teeth},
           {"internal", g.kind == GearKind::kInternal},
@@ -63,6 +76,7 @@ json MeshReport(const Scene& scene, const MeshDef& mesh) {
       {"pinion", mesh.pinion},
       {"gear", mesh.gear},
       {"internal", g.internal},
+      {"rack", g.rack},
       {"normal_module", g.spec.normal_module},
       {"transverse_module", g.transverse_module},
       {"normal_pressure_angle_deg", RadToDeg(g.spec.normal_pressure_angle)},
@@ -187,7 +201,7 @@ nlohmann::json MakeInfoReport(const Scene& scene) {
     for (const MeshDef& mesh : scene.meshes) {
       if (mesh.pinion == def.name || mesh.gear == def.name) {
         gears.push_back(GearReport(
-            scene, def, mesh.pinion == def.name ? mesh.geometry.pinion : mesh.geometry.gear));
+            scene, def, mesh.pinion == def.name ? mesh.geometry.pinion : mesh.geometry.gear, mesh));
         break;
       }
     }
@@ -242,6 +256,13 @@ std::string FormatInfoText(const nlohmann::json& report) {
   out << "operating point: " << op["speed_rpm"].get<double>() << " rpm, "
       << op["torque"].get<double>() << " N·m on " << op["body"].get<std::string>() << "\n";
   for (const json& gear : report["gears"]) {
+    if (gear.contains("rack")) {
+      out << "\ngear " << gear["name"].get<std::string>() << " (rack, hand "
+          << gear["hand"].get<std::string>() << ")\n";
+      Line(out, "normal top land", 1e3 * gear["tip_thickness_normal"].get<double>(), "mm");
+      Line(out, "speed", gear["speed_m_per_s"].get<double>(), "m/s");
+      continue;
+    }
     out << "\ngear " << gear["name"].get<std::string>() << " (" << gear["teeth"].get<int>()
         << " teeth" << (gear["internal"].get<bool>() ? ", internal" : "") << ", hand "
         << gear["hand"].get<std::string>() << ")\n";

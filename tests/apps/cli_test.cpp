@@ -86,6 +86,26 @@ TEST(CliTest, InfoOnHelicalPairHasOverlapAndBaseHelix) {
       1e-12);
 }
 
+// A pinion on a rack (examples/rack/rack-and-pinion.toml): the rack's speed is the pinion's
+// pitch-line speed Ω r_1, the mesh is flagged, and the rack's infinite radii are JSON nulls.
+TEST(CliTest, InfoOnARackGivesItsPitchLineSpeed) {
+  const std::string path = std::string(GEARDYN_SOURCE_DIR) + "/examples/rack/rack-and-pinion.toml";
+  const nlohmann::json r = RunJson({"info", path});
+  ASSERT_EQ(r["gears"].size(), 2u);
+  const nlohmann::json& rack = r["gears"][1];
+  EXPECT_TRUE(rack["rack"].get<bool>());
+  const double r1 = r["gears"][0]["reference_radius"].get<double>();
+  EXPECT_NEAR(rack["speed_m_per_s"].get<double>(), 300.0 * 2.0 * M_PI / 60.0 * r1, 1e-12);
+  const nlohmann::json& m = r["meshes"][0];
+  EXPECT_TRUE(m["rack"].get<bool>());
+  EXPECT_TRUE(m["base_radius_gear"].is_null());
+  EXPECT_NEAR(m["operating_pressure_angle_deg"].get<double>(), 20.0, 1e-12);
+  const CliRun text = RunGeardyn({"info", path});
+  EXPECT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(text.out.find("(rack, hand none)"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("m/s"), std::string::npos) << text.out;
+}
+
 // A scene file for a published worked example, written where the test can read it back.
 std::string WriteScene(const std::string& name, const std::string& text) {
   const std::filesystem::path dir = std::filesystem::path(GEARDYN_BINARY_DIR) / "test-output";

@@ -29,6 +29,7 @@
 #include <sstream>
 #include <string>
 
+#include "gear_geometry_internal.hpp"
 #include "geardyn/common/check.hpp"
 #include "geardyn/common/units.hpp"
 
@@ -45,8 +46,7 @@ constexpr double kLengthTolerance = 1e-9;
 // shifts printed to 4 decimals are each off by at most 5e-5 (documented in docs/scene-format.md).
 constexpr double kShiftRoundingTolerance = 1e-4;
 
-/// inv α = tan α − α.
-double Involute(double alpha) { return std::tan(alpha) - alpha; }
+using internal::Involute;
 
 /// α in (0, π/2) with inv α = v > 0. Newton on the convex increasing f(α) = inv α − v converges
 /// monotonically from any start with f ≥ 0; both (3v)^(1/3) (inv α ≥ α³/3) and atan(v + π/2)
@@ -73,7 +73,7 @@ bool FiniteNonNegative(double v) { return std::isfinite(v) && v >= 0.0; }
 bool FinitePositive(double v) { return std::isfinite(v) && v > 0.0; }
 
 void ValidateBlank(const GearBlank& blank, const std::string& name) {
-  GEARDYN_THROW_UNLESS(blank.teeth >= kMinTeeth,
+  GEARDYN_THROW_UNLESS(blank.kind == GearKind::kRack || blank.teeth >= kMinTeeth,
                        name << ".teeth: must be at least " << kMinTeeth << ", got " << blank.teeth);
   GEARDYN_THROW_UNLESS(
       FinitePositive(blank.face_width),
@@ -106,7 +106,13 @@ void ValidateBlank(const GearBlank& blank, const std::string& name) {
   }
 }
 
-void ValidateSpec(const GearPairSpec& spec) {
+}  // namespace
+
+namespace internal {
+
+double Involute(double alpha) { return std::tan(alpha) - alpha; }
+
+void ValidateGearPairSpec(const GearPairSpec& spec) {
   GEARDYN_THROW_UNLESS(
       FinitePositive(spec.normal_module),
       "normal_module: must be finite and positive, got " << spec.normal_module << " m");
@@ -137,6 +143,10 @@ void ValidateSpec(const GearPairSpec& spec) {
       "min_tip_thickness_factor: must be finite and >= 0, got " << spec.min_tip_thickness_factor);
   ValidateBlank(spec.pinion, "pinion");
   ValidateBlank(spec.gear, "gear");
+  GEARDYN_THROW_UNLESS(spec.pinion.kind != GearKind::kRack,
+                       "pinion.kind: a rack cannot be the pinion of a pair; name the rack 'gear' "
+                       "(it may still be the driving member physically: the drive sign says "
+                       "which way the load flows)");
   GEARDYN_THROW_UNLESS(spec.pinion.kind == GearKind::kExternal,
                        "pinion.kind: an internal gear cannot be the pinion; name the ring gear "
                        "'gear' (it may still be the driving member physically)");
@@ -153,7 +163,7 @@ void ValidateSpec(const GearPairSpec& spec) {
   }
 }
 
-HelixHand Opposite(HelixHand hand) {
+HelixHand OppositeHand(HelixHand hand) {
   switch (hand) {
     case HelixHand::kRight:
       return HelixHand::kLeft;
@@ -164,6 +174,12 @@ HelixHand Opposite(HelixHand hand) {
   }
   return HelixHand::kNone;
 }
+
+}  // namespace internal
+
+namespace {
+
+using internal::OppositeHand;
 
 /// Transverse tooth thickness at radius r_y of a gear with reference radius r, reference
 /// thickness s_t and kind; inv_alpha_y = inv(acos(r_b / r_y)).
@@ -177,6 +193,10 @@ double ThicknessAt(GearKind kind, double r, double s_t, double inv_alpha_t, doub
 /// b / cos β_b: with ε_α = n + f and ε_β = m + g (integer + fractional parts),
 ///   min = ε_α − (f g − max(0, f + g − 1)) / ε_β,   max = ε_α + (min(f, g) − f g) / ε_β,
 /// and for spur gears (ε_β = 0) min = n, max = n + 1 (both ε_α when f = 0).
+}  // namespace
+
+namespace internal {
+
 void ContactLineExtremes(double eps_alpha, double eps_beta, double* lo, double* hi) {
   const double n = std::floor(eps_alpha);
   const double f = eps_alpha - n;
@@ -190,29 +210,70 @@ void ContactLineExtremes(double eps_alpha, double eps_beta, double* lo, double* 
   *hi = eps_alpha + (std::min(f, g) - f * g) / eps_beta;
 }
 
-}  // namespace
+void FillTransverseBasics(GearPairGeometry* pair) {
+  GearPairGeometry& g = *pair;
+  const double m_n = g.spec.normal_module;
+  const double beta = g.spec.helix_angle;
+  // ISO 21771 basic relations (transverse section).
+  g.transverse_module = m_n / std::cos(beta);
+  g.transverse_pressure_angle = std::atan(std::tan(g.spec.normal_pressure_angle) / std::cos(beta));
+  g.base_helix_angle = std::atan(std::tan(beta) * std::cos(g.transverse_pressure_angle));
+  g.transverse_base_pitch = kPi * g.transverse_module * std::cos(g.transverse_pressure_angle);
+  g.normal_base_pitch = kPi * m_n * std::cos(g.spec.normal_pressure_angle);
+}
+
+void FillContactRatios(GearPairGeometry* pair) {
+  GearPairGeometry& g = *pair;
+  const GearPairSpec& spec = g.spec;
+  const double m_n = spec.normal_module;
+  // Contact ratios (ISO 21771): ε_α = g_α / p_bt, ε_β = b sin β / (π m_n), b = min(b1, b2).
+  g.face_width = std::min(spec.pinion.face_width, spec.gear.face_width);
+  g.pinion.face_width = spec.pinion.face_width;
+  g.gear.face_width = spec.gear.face_width;
+  g.transverse_contact_ratio = g.line_of_action_length / g.transverse_base_pitch;
+  GEARDYN_THROW_UNLESS(g.transverse_contact_ratio >= 1.0,
+                       "transverse_contact_ratio: " << g.transverse_contact_ratio
+                                                    << " is below 1 (short by "
+                                                    << 1.0 - g.transverse_contact_ratio << ")");
+  g.overlap_contact_ratio = g.face_width * std::sin(spec.helix_angle) / (kPi * m_n);
+  // Every unit of ε_γ is one more contact line evaluated at every θ (and one more slice set):
+  // bound it where no manufactured face width reaches.
+  GEARDYN_THROW_UNLESS(g.overlap_contact_ratio <= kMaxOverlapRatio,
+                       "overlap_contact_ratio: ε_β = b sin β / (π m_n) = "
+                           << g.overlap_contact_ratio << " exceeds " << kMaxOverlapRatio
+                           << " (face width " << g.face_width << " m = " << g.face_width / m_n
+                           << " normal modules): that many contact lines "
+                              "at every angle; check face_width and normal_module");
+  g.total_contact_ratio = g.transverse_contact_ratio + g.overlap_contact_ratio;
+  // Contact-line lengths in the zone of action (closed forms of spec 01 §4.1).
+  const double unit = g.face_width / std::cos(g.base_helix_angle);
+  double lo = 0.0;
+  double hi = 0.0;
+  ContactLineExtremes(g.transverse_contact_ratio, g.overlap_contact_ratio, &lo, &hi);
+  g.mean_contact_line_length = unit * g.transverse_contact_ratio;
+  g.min_contact_line_length = unit * lo;
+  g.max_contact_line_length = unit * hi;
+}
+
+}  // namespace internal
 
 GearPairGeometry CalcGearPairGeometry(const GearPairSpec& spec) {
-  ValidateSpec(spec);
+  internal::ValidateGearPairSpec(spec);
+  if (spec.gear.kind == GearKind::kRack) return internal::CalcRackPairGeometry(spec);
   GearPairGeometry g;
   g.spec = spec;
   const bool internal = spec.gear.kind == GearKind::kInternal;
   const double sigma = internal ? -1.0 : 1.0;
   g.internal = internal;
 
-  // ISO 21771 basic relations (transverse section).
+  internal::FillTransverseBasics(&g);
   const double m_n = spec.normal_module;
   const double alpha_n = spec.normal_pressure_angle;
   const double beta = spec.helix_angle;
-  const double m_t = m_n / std::cos(beta);
-  const double alpha_t = std::atan(std::tan(alpha_n) / std::cos(beta));
-  const double beta_b = std::atan(std::tan(beta) * std::cos(alpha_t));
+  const double m_t = g.transverse_module;
+  const double alpha_t = g.transverse_pressure_angle;
+  const double beta_b = g.base_helix_angle;
   const double inv_alpha_t = Involute(alpha_t);
-  g.transverse_module = m_t;
-  g.transverse_pressure_angle = alpha_t;
-  g.base_helix_angle = beta_b;
-  g.transverse_base_pitch = kPi * m_t * std::cos(alpha_t);
-  g.normal_base_pitch = kPi * m_n * std::cos(alpha_n);
 
   const double z1 = static_cast<double>(spec.pinion.teeth);
   const double z2 = static_cast<double>(spec.gear.teeth);
@@ -457,7 +518,7 @@ GearPairGeometry CalcGearPairGeometry(const GearPairSpec& spec) {
   fill_gear(spec.pinion, "pinion", r1, rb1, ra1, rf1, rw1, s_t1, &g.pinion);
   fill_gear(spec.gear, "gear", r2, rb2, ra2, rf2, rw2, s_t2, &g.gear);
   g.pinion.hand = spec.pinion_hand;
-  g.gear.hand = internal ? spec.pinion_hand : Opposite(spec.pinion_hand);
+  g.gear.hand = internal ? spec.pinion_hand : OppositeHand(spec.pinion_hand);
 
   // Where each mating tip meets the flank (radius from the roll length on the line of action).
   g.pinion.start_of_active_profile_radius = std::hypot(rb1, g.path_start_from_pinion_tangent);
@@ -475,25 +536,7 @@ GearPairGeometry CalcGearPairGeometry(const GearPairSpec& spec) {
                                                  << " past the pinion's root circle");
   }
 
-  // Contact ratios (ISO 21771): ε_α = g_α / p_bt, ε_β = b sin β / (π m_n), b = min(b1, b2).
-  g.face_width = std::min(spec.pinion.face_width, spec.gear.face_width);
-  g.pinion.face_width = spec.pinion.face_width;
-  g.gear.face_width = spec.gear.face_width;
-  g.transverse_contact_ratio = g.line_of_action_length / g.transverse_base_pitch;
-  GEARDYN_THROW_UNLESS(g.transverse_contact_ratio >= 1.0,
-                       "transverse_contact_ratio: " << g.transverse_contact_ratio
-                                                    << " is below 1 (short by "
-                                                    << 1.0 - g.transverse_contact_ratio << ")");
-  g.overlap_contact_ratio = g.face_width * std::sin(beta) / (kPi * m_n);
-  // Every unit of ε_γ is one more contact line evaluated at every θ (and one more slice set):
-  // bound it where no manufactured face width reaches.
-  GEARDYN_THROW_UNLESS(g.overlap_contact_ratio <= kMaxOverlapRatio,
-                       "overlap_contact_ratio: ε_β = b sin β / (π m_n) = "
-                           << g.overlap_contact_ratio << " exceeds " << kMaxOverlapRatio
-                           << " (face width " << g.face_width << " m = " << g.face_width / m_n
-                           << " normal modules): that many contact lines "
-                              "at every angle; check face_width and normal_module");
-  g.total_contact_ratio = g.transverse_contact_ratio + g.overlap_contact_ratio;
+  internal::FillContactRatios(&g);
   g.gear_ratio = z2 / z1;
 
   // Tooth-count facts for θ* (spec 01 §1).
@@ -503,14 +546,6 @@ GearPairGeometry CalcGearPairGeometry(const GearPairSpec& spec) {
   g.pinion_turns_per_hunting_period = spec.gear.teeth / g.teeth_gcd;
   g.gear_turns_per_hunting_period = spec.pinion.teeth / g.teeth_gcd;
 
-  // Contact-line lengths in the zone of action (closed forms of spec 01 §4.1).
-  const double unit = g.face_width / std::cos(beta_b);
-  double lo = 0.0;
-  double hi = 0.0;
-  ContactLineExtremes(g.transverse_contact_ratio, g.overlap_contact_ratio, &lo, &hi);
-  g.mean_contact_line_length = unit * g.transverse_contact_ratio;
-  g.min_contact_line_length = unit * lo;
-  g.max_contact_line_length = unit * hi;
   return g;
 }
 

@@ -81,14 +81,14 @@ IsoMeshStiffness CalcIsoMeshStiffness(const GearPairGeometry& g, const IsoStiffn
   const GearPairSpec& spec = g.spec;
   IsoMeshStiffness out;
 
-  // ISO index 1 = fewer teeth.
-  const bool swap = spec.gear.teeth < spec.pinion.teeth;
+  // ISO index 1 = fewer teeth (a rack has infinitely many).
+  const bool swap = !g.rack && spec.gear.teeth < spec.pinion.teeth;
   out.iso_pinion_is_spec_gear = swap;
   const GearGeometry& g1 = swap ? g.gear : g.pinion;
   const GearGeometry& g2 = swap ? g.pinion : g.gear;
   const double zn1 = g1.virtual_teeth;
-  const double inv_zn2 =
-      g2.kind == GearKind::kInternal ? 0.0 : 1.0 / g2.virtual_teeth;  // z_n2 = ∞ if internal
+  // z_n2 = ∞ for an internal gear (ISO 6336-1) and for a rack (the limit z_2 → ∞).
+  const double inv_zn2 = g2.kind == GearKind::kExternal ? 1.0 / g2.virtual_teeth : 0.0;
   const double x1 = g1.profile_shift;
   const double x2 = g2.profile_shift;
 

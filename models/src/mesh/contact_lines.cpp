@@ -177,7 +177,11 @@ ZoneOfAction MakeZoneOfAction(const GearPairGeometry& geometry, int drive_sign) 
   const double rb = geometry.gear.base_radius;
   const double t2a = std::sqrt(std::max(0.0, ra * ra - rb * rb));
   const double t2c = rb * std::tan(geometry.operating_pressure_angle);
-  double approach = geometry.internal ? t2c - t2a : t2a - t2c;
+  // A rack has no T2: the approach is T1C − T1A on the pinion's roll lengths (the same length).
+  double approach = geometry.rack ? geometry.pitch_point_from_pinion_tangent -
+                                        geometry.path_start_from_pinion_tangent
+                    : geometry.internal ? t2c - t2a
+                                        : t2a - t2c;
   approach = std::clamp(approach, 0.0, zone.length);
   zone.pitch_point_offset = approach - 0.5 * zone.length;
   return zone;

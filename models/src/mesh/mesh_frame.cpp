@@ -54,8 +54,10 @@ void ValidatePlacement(const MeshPlacement& p) {
       std::isfinite(p.pinion_base_radius) && p.pinion_base_radius > 0.0,
       "pinion_base_radius: must be positive and finite, got " << p.pinion_base_radius << " m");
   GEARDYN_THROW_UNLESS(
-      std::isfinite(p.gear_base_radius) && p.gear_base_radius > 0.0,
+      p.rack || (std::isfinite(p.gear_base_radius) && p.gear_base_radius > 0.0),
       "gear_base_radius: must be positive and finite, got " << p.gear_base_radius << " m");
+  GEARDYN_THROW_UNLESS(!(p.rack && p.internal),
+                       "internal: a rack (rack = true) has no internal teeth");
   GEARDYN_THROW_UNLESS(!p.internal || p.gear_base_radius > p.pinion_base_radius,
                        "gear_base_radius: an internal gear (ring) must be larger than its pinion, "
                        "got "
@@ -89,7 +91,7 @@ void ValidatePlacement(const MeshPlacement& p) {
 MeshFrame CalcMeshFrame(const MeshPlacement& p) {
   ValidatePlacement(p);
   const double a_i = p.pinion_base_radius;
-  const double a_j = p.gear_base_radius;
+  const double a_j = p.rack ? 0.0 : p.gear_base_radius;
 
   // Transverse centre distance: both axes are parallel to Z, an axial offset of the centres
   // does not change the plane of action.
@@ -101,12 +103,14 @@ MeshFrame CalcMeshFrame(const MeshPlacement& p) {
                        "gear_center: coincides with pinion_center in the transverse plane (centre "
                        "distance "
                            << C << " m)");
-  // cos φ = (a_i + a_j)/C external, (a_j − a_i)/C internal (derivation step 1).
+  // cos φ = (a_i + a_j)/C external, (a_j − a_i)/C internal (derivation step 1); a rack's
+  // reference point is the pitch point itself, so cos φ = a_i / C (a_j = 0).
   const double radius_sum = p.internal ? a_j - a_i : a_i + a_j;
   GEARDYN_THROW_UNLESS(C > radius_sum,
                        "gear_center: centre distance "
                            << C << " m is not larger than "
                            << (p.internal ? "gear_base_radius - pinion_base_radius = "
+                               : p.rack   ? "pinion_base_radius = "
                                           : "pinion_base_radius + gear_base_radius = ")
                            << radius_sum << " m (the base circles "
                            << (p.internal ? "cannot share a same-side tangent)" : "overlap)"));
@@ -153,6 +157,7 @@ MeshFrame CalcMeshFrame(const MeshPlacement& p) {
   f.signed_helix_angle = psi;
   f.drive_sign = p.drive_sign;
   f.internal = p.internal;
+  f.rack = p.rack;
   return f;
 }
 
@@ -169,8 +174,11 @@ MeshFrame CalcMeshFrame(const GearPairGeometry& geometry, const Vector3& pinion_
   p.pinion_hand =
       geometry.pinion.hand != HelixHand::kNone ? geometry.pinion.hand : geometry.spec.pinion_hand;
   p.internal = geometry.internal;
+  p.rack = geometry.rack;
+  if (p.rack) p.gear_base_radius = 0.0;
   p.drive_sign = drive_sign;
-  // C = (r_b2 ± r_b1)/cos α_wt = a_w; invalid radii or angles are reported by the call below.
+  // C = (r_b2 ± r_b1)/cos α_wt = a_w (a rack: r_b1/cos α_t, to its pitch point); invalid radii or
+  // angles are reported by the call below.
   const double radius_sum = p.internal ? p.gear_base_radius - p.pinion_base_radius
                                        : p.pinion_base_radius + p.gear_base_radius;
   const double C = radius_sum / std::cos(p.operating_pressure_angle);

@@ -1,4 +1,5 @@
-// Reading one [[gear]] table: teeth, rack and blank data, helix, mass properties.
+// Reading one [[gear]] table: teeth, basic-rack and blank data, helix, mass properties; a
+// gear with rack = true is a rack (gear_geometry.hpp "Rack").
 #include <array>
 #include <cstdint>
 #include <string_view>
@@ -72,6 +73,12 @@ void ReadBlankOptions(const Fields& f, GearBlank* b) {
   if (auto internal = f.OptBool("internal")) {
     b->kind = *internal ? GearKind::kInternal : GearKind::kExternal;
   }
+  if (f.OptBool("rack").value_or(false)) {
+    if (b->kind == GearKind::kInternal) {
+      f.Fail("rack", "a rack has no internal teeth; give at most one of rack and internal");
+    }
+    b->kind = GearKind::kRack;
+  }
   b->web_thickness = f.OptPositive("web_thickness");
   b->rim_thickness = f.OptPositive("rim_thickness");
 }
@@ -104,11 +111,18 @@ GearDef ReadGear(const ErrorContext& ctx, const toml::table& t, std::size_t inde
   f.CheckKnown({"name", "teeth", "normal_module", "normal_pressure_angle_deg", "helix_angle_deg",
                 "hand", "face_width", "profile_shift", "addendum_coefficient",
                 "dedendum_coefficient", "root_radius_coefficient", "tip_diameter", "internal",
-                "web_thickness", "rim_thickness", "mass", "inertia", "transverse_inertia"});
+                "rack", "web_thickness", "rim_thickness", "mass", "inertia", "transverse_inertia"});
   g.name = ReadElementName(ctx, t, "gear", index);
 
   GearBlank& b = g.blank;
-  b.teeth = f.ReqPositiveInt("teeth", "number of teeth, a positive integer", kMaxTeeth);
+  // A rack (rack = true) has no tooth count that enters the mesh: its length is not modelled.
+  const bool rack = f.OptBool("rack").value_or(false);
+  if (!rack) {
+    b.teeth = f.ReqPositiveInt("teeth", "number of teeth, a positive integer", kMaxTeeth);
+  } else if (f.Find("teeth") != nullptr) {
+    f.Fail("teeth",
+           "a rack's tooth count is not used (its length does not enter the mesh); leave it out");
+  }
 
   const Number module = f.ReqNumber("normal_module", "normal module in m");
   f.Metres("normal_module", module, kMaxModule);

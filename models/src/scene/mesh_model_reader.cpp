@@ -188,7 +188,7 @@ MeshModelDef ReadMeshModel(const Fields& f, const GearDef& pinion, const GearDef
         ReadToothModifications(Fields(f.context(), *t, f.Key("modifications")), geometry);
   }
   def.errors.pinion_teeth = pinion.blank.teeth;
-  def.errors.gear_teeth = gear.blank.teeth;
+  def.errors.gear_teeth = gear.blank.kind == GearKind::kRack ? 1 : gear.blank.teeth;
   if (const toml::table* t = f.OptTable("errors")) {
     def.errors = ReadToothErrors(Fields(f.context(), *t, f.Key("errors")), pinion, gear);
   }

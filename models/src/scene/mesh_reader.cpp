@@ -108,6 +108,19 @@ MeshDef ReadMesh(const ErrorContext& ctx, const toml::table& t, std::size_t inde
                          "' is an internal gear; the pinion of a mesh must be external (make "
                          "the ring the mesh's gear)");
   }
+  if (p.blank.kind == GearKind::kRack) {
+    f.Fail("pinion", "'" + p.name +
+                         "' is a rack; the pinion of a mesh must be a gear (make the rack the "
+                         "mesh's gear: the drive sign follows the operating point either way)");
+  }
+  if (g.blank.kind == GearKind::kRack) {
+    for (const MeshDef& other : scene.meshes) {
+      if (other.gear == m.gear || other.pinion == m.gear) {
+        f.Fail("gear", "rack '" + m.gear + "' already meshes in mesh '" + other.name +
+                           "'; a rack meshes with one pinion here");
+      }
+    }
+  }
   for (const MeshDef& other : scene.meshes) {
     if ((other.pinion == m.pinion && other.gear == m.gear) ||
         (other.pinion == m.gear && other.gear == m.pinion)) {
@@ -119,6 +132,15 @@ MeshDef ReadMesh(const ErrorContext& ctx, const toml::table& t, std::size_t inde
   CheckCompatible(ctx, t, prefix, p, g);
   m.geometry = ReadGeometry(f, prefix, p, g);
   m.model = ReadMeshModel(f, p, g, m.geometry);
+  if (m.geometry.rack &&
+      (m.model.level == MeshModelLevel::kTorsional || m.model.level == MeshModelLevel::kContact)) {
+    f.Fail("model", std::string("\"") + ToString(m.model.level) +
+                        "\" is not available on a rack (" +
+                        (m.model.level == MeshModelLevel::kTorsional
+                             ? "the torsional model has no translation for it"
+                             : "the tooth-contact simulator has no rack geometry yet") +
+                        "); use \"blankenship_singh\" or \"slices\"");
+  }
   return m;
 }
 

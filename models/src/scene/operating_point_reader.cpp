@@ -22,7 +22,11 @@ OperatingPointDef ReadOperatingPoint(const ErrorContext& ctx, const toml::table&
   OperatingPointDef op;
   if (auto body = f.OptString("body")) {
     op.body = *body;
-    (void)GearByName(f, "body", op.body, scene);
+    if (GearByName(f, "body", op.body, scene).blank.kind == GearKind::kRack) {
+      f.Fail("body", "'" + op.body +
+                         "' is a rack: it translates and has no speed in rpm; give the operating "
+                         "point on its pinion");
+    }
   } else {
     op.body = scene.meshes.front().pinion;
   }

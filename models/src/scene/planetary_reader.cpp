@@ -185,8 +185,8 @@ void ReadPlanetary(const ErrorContext& ctx, const toml::table& t, std::size_t in
   if (ring.blank.kind != GearKind::kInternal) {
     f.Fail("ring", "'" + p.ring + "' must be an internal gear (internal = true)");
   }
-  if (sun.blank.kind == GearKind::kInternal) f.Fail("sun", "'" + p.sun + "' must be external");
-  if (planet_gear.blank.kind == GearKind::kInternal) {
+  if (sun.blank.kind != GearKind::kExternal) f.Fail("sun", "'" + p.sun + "' must be external");
+  if (planet_gear.blank.kind != GearKind::kExternal) {
     f.Fail("planet", "'" + planet + "' must be external");
   }
   if (p.sun == planet) f.Fail("planet", "must differ from the sun ('" + p.sun + "')");

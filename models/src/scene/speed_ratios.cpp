@@ -31,6 +31,7 @@ SpeedRatios CalcSpeedRatios(const Scene& scene, std::string_view reference) {
     if (scene.FindPlanetaryMesh(mesh.name)) continue;  // the set's own rule below
     const GearDef& pinion = scene.gear(mesh.pinion);
     const GearDef& gear = scene.gear(mesh.gear);
+    if (gear.blank.kind == GearKind::kRack) continue;  // it translates: no angular speed
     const double sign = gear.blank.kind == GearKind::kInternal ? 1.0 : -1.0;
     edges.push_back(
         {mesh.pinion, mesh.gear,

@@ -148,6 +148,18 @@ ToothErrors ReadToothErrors(const Fields& f, const GearDef& pinion, const GearDe
   ToothErrors e;
   e.pinion_teeth = pinion.blank.teeth;
   e.gear_teeth = gear.blank.teeth;
+  if (gear.blank.kind == GearKind::kRack) {
+    // The pinion's errors repeat every z_1 mesh cycles (lcm(z_1, 1)); the rack's never repeat.
+    e.gear_teeth = 1;
+    for (const char* key : {"gear_pitch_deviations", "gear_runout", "gear_runout_phase_deg"}) {
+      if (f.Find(key) != nullptr) {
+        f.Fail(key, "'" + gear.name +
+                        "' is a rack: its errors do not repeat over a mesh period (no runout, "
+                        "pitch deviations along its length are not modelled); give the "
+                        "pinion's");
+      }
+    }
+  }
   e.pinion_pitch_deviations = ReadPitchDeviations(f, "pinion_pitch_deviations", pinion, "pinion");
   e.gear_pitch_deviations = ReadPitchDeviations(f, "gear_pitch_deviations", gear, "gear");
   ReadRunout(f, "pinion_runout", &e.pinion_runout, &e.pinion_runout_phase);

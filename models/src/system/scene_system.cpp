@@ -203,7 +203,9 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
       const int w = GearIndex(scene, m.gear);
       if (p != g && w != g) continue;
       mesh_done[k] = true;
-      const double a_w = m.geometry.center_distance;
+      // A rack's reference point is the pitch point, r_1 from the pinion axis (mesh_frame.hpp).
+      const double a_w =
+          m.geometry.rack ? m.geometry.pinion.operating_pitch_radius : m.geometry.center_distance;
       if (centre[p] && centre[w]) {  // closed loop: γ from the placed centres
         const Vector3 d = *centre[w] - *centre[p];
         const double dist = std::hypot(d.x(), d.y());
@@ -220,10 +222,12 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
         continue;
       }
       const auto it = options.mesh_angles.find(m.name);
-      gamma[k] = it != options.mesh_angles.end()
-                     ? it->second
+      // A rack lies below its pinion (−y) and runs along +x unless its angle is given.
+      gamma[k] = it != options.mesh_angles.end() ? it->second
+                 : m.geometry.rack
+                     ? -0.5 * std::numbers::pi
                      : options.line_of_centres_angle + (walk % 2) * std::numbers::pi / 2.0;
-      ++walk;
+      if (!m.geometry.rack || it != options.mesh_angles.end()) ++walk;
       const Vector3 step(a_w * std::cos(gamma[k]), a_w * std::sin(gamma[k]), 0.0);
       if (centre[p]) {
         place(w, *centre[p] + step);
@@ -382,6 +386,11 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
   for (const TorqueLoadDef& load : scene.loads) {
     Vector6 f = Vector6::Zero();
     f(5) = load.torque;
+    // A rack's force along its direction of travel Z × ê, ê from its pinion to it.
+    for (int k = 0; k < num_meshes && load.force != 0.0; ++k) {
+      if (scene.meshes[k].gear != load.body) continue;
+      f.head<3>() = load.force * Vector3(-std::sin(gamma[k]), std::cos(gamma[k]), 0.0);
+    }
     builder.AddTorque(body[GearIndex(scene, load.body)], f, load.name);
   }
 

@@ -40,7 +40,36 @@ std::vector<Scene> AllScenes() {
   MeshPlacement offset = test::MakeMeshPlacement(false, HelixHand::kRight, 1, true);
   offset.face_offset = 0.021;
   scenes.push_back({"external_rh_drive_pos_face_offset", offset});
+  // A pinion on a rack (issue 19): the rack's reference point at the pitch point, a_i / cos φ
+  // from the pinion axis (MeshPlacement::rack).
+  for (HelixHand hand : {HelixHand::kNone, HelixHand::kRight}) {
+    for (int s : {1, -1}) {
+      MeshPlacement rack = test::MakeMeshPlacement(false, hand, s, true);
+      rack.rack = true;
+      rack.gear_base_radius = 0.0;
+      rack.operating_pressure_angle = DegToRad(20.0);
+      rack.gear_center = rack.pinion_center + rack.pinion_base_radius /
+                                                  std::cos(rack.operating_pressure_angle) *
+                                                  Vector3(std::cos(2.31), std::sin(2.31), 0.0);
+      scenes.push_back({std::string("rack_") + (hand == HelixHand::kNone ? "spur" : "rh") +
+                            (s > 0 ? "_drive_pos" : "_drive_neg"),
+                        rack});
+    }
+  }
   return scenes;
+}
+
+// The conjugate (rolling) motion of the pair: the pinion turns by 1/a_i, the gear by ∓1/a_j,
+// a rack translates with the pinion's pitch point.
+Vector12 ConjugateMotion(const MeshPlacement& p, const MeshFrame& f) {
+  Vector12 q = Vector12::Zero();
+  q(5) = 1.0 / p.pinion_base_radius;
+  if (p.rack) {
+    q.segment<3>(6) = q(5) * Vector3::UnitZ().cross(f.reference_point - f.pinion_center);
+  } else {
+    q(11) = (p.internal ? 1.0 : -1.0) / p.gear_base_radius;
+  }
+  return q;
 }
 
 Matrix3 RotationFromVector(const Vector3& theta) {
@@ -132,10 +161,9 @@ TEST_P(MeshJacobianSceneTest, RigidAndConjugateMotionsDeflectNothing) {
           << "omega = " << omega.transpose() << ", point = " << point.transpose();
     }
   }
-  // Conjugate rotation: a_i θ_iz = −a_j θ_jz (external), = +a_j θ_jz (internal).
-  q.setZero();
-  q(5) = 1.0 / p.pinion_base_radius;
-  q(11) = (p.internal ? 1.0 : -1.0) / p.gear_base_radius;
+  // Conjugate rotation: a_i θ_iz = −a_j θ_jz (external), = +a_j θ_jz (internal); a rack moves
+  // with the pinion's pitch point, θ_iz Z × (p0 − c_i).
+  q = ConjugateMotion(p, f);
   EXPECT_LE((G * q).norm(), kAlgebraTol * scale * q.norm());
 }
 
@@ -196,9 +224,7 @@ TEST_P(MeshJacobianSceneTest, BsProjectedJacobianLoadsOnlyTheDerivedRigidMotions
   Vector12 q;
   q << t, Vector3::Zero(), t, Vector3::Zero();
   EXPECT_LE((G_bs * q).norm(), kAlgebraTol * scale * q.norm());
-  q.setZero();
-  q(5) = 1.0 / p.pinion_base_radius;
-  q(11) = (p.internal ? 1.0 : -1.0) / p.gear_base_radius;
+  q = ConjugateMotion(p, f);
   EXPECT_LE((G_bs * q).norm(), kAlgebraTol * scale * q.norm());
   const Vector3 C = f.gear_center - f.pinion_center;
   const double u_load = -s * (sin_psi * C.dot(f.v) - cos_psi * C.dot(f.w));

@@ -18,8 +18,9 @@ namespace geardyn {
 /// Hand of a helical gear. Spur gears have kNone.
 enum class HelixHand { kNone, kRight, kLeft };
 
-/// External (teeth outside) or internal (ring) gear.
-enum class GearKind { kExternal, kInternal };
+/// External (teeth outside), internal (ring) gear, or a rack (straight teeth, infinite radius;
+/// only as the `gear` of a pair, see CalcGearPairGeometry "Rack").
+enum class GearKind { kExternal, kInternal, kRack };
 
 /// @brief Tooth and blank data of one gear of a pair (per-gear inputs).
 ///
@@ -31,7 +32,7 @@ enum class GearKind { kExternal, kInternal };
 /// signed tooth count). KHK / SDP-SI tables use the opposite sign for internal gears:
 /// x(ISO) = −x(KHK). See the implementation notes in gear_geometry.cpp.
 struct GearBlank {
-  int teeth = 0;                          ///< z [-] (positive also for internal gears)
+  int teeth = 0;  ///< z [-] (positive also for internal gears; a rack's count is not used)
   GearKind kind = GearKind::kExternal;    ///< external or internal (ring) gear
   double face_width = 0.0;                ///< b [m]
   double profile_shift = 0.0;             ///< x [-]
@@ -93,6 +94,7 @@ struct GearPairGeometry {
   GearGeometry pinion;
   GearGeometry gear;
   bool internal = false;                   ///< true when the gear is internal (a ring)
+  bool rack = false;                       ///< true when the gear is a rack (see "Rack")
   double transverse_module = 0.0;          ///< m_t = m_n / cos β [m]
   double transverse_pressure_angle = 0.0;  ///< α_t [rad]
   double base_helix_angle = 0.0;           ///< β_b [rad]
@@ -157,6 +159,22 @@ struct GearPairGeometry {
 /// @throws InvalidInput whose message starts with the quantity's name (e.g.
 ///   "transverse_contact_ratio: 0.93 is below 1 (short by 0.07)") and says by how much the bound
 ///   is missed.
+///
+/// **Rack** (spec.gear.kind == kRack, Cardona's gear–rack pair): the pinion meshes with a basic-
+/// rack-shaped rack of addendum h_aP* m_n and dedendum h_fP* m_n (the gear blank's coefficients)
+/// and reference tooth thickness π m_n / 2. `center_distance` is then the distance from the
+/// pinion axis to the rack's reference line, by default r_1 + x_1 m_n (zero backlash); the
+/// pinion rolls on its reference circle whatever the mounting, so α_wt = α_t and r_w1 = r_1.
+/// With d_a = the rack tip line's distance from the pinion axis (center_distance − h_aP* m_n), the
+/// path of contact starts at the roll length T1A = (d_a − r_b1 cos α_t) / sin α_t (where the rack
+/// tip line crosses the line of action) and ends at the pinion tip T1E; backlash
+/// j_wt = 2 (a_w − a_w0) tan α_t on the pitch line. The limit of a gear with z_2 → ∞ and x_2 = 0
+/// (tested). The rack's radii, virtual teeth and gear_ratio are +∞; its hunting period is the
+/// pinion's z_1 mesh cycles (the rack's own errors never repeat). Rack rejections:
+/// "gear.profile_shift" (≠ 0: move the rack with center_distance), "gear.tip_diameter" (a rack has
+/// none), "gear.tip_interference" (T1A < 0: the rack tip meets the pinion below its base circle),
+/// "gear.tip_thickness_normal" (the rack's top land π/2 − 2 h_aP* tan α_n, in m_n, below
+/// min_tip_thickness_factor), the tip clearances, and the pinion checks as for any pair.
 GearPairGeometry CalcGearPairGeometry(const GearPairSpec& spec);
 
 }  // namespace geardyn

@@ -48,9 +48,10 @@ struct IsoMeshStiffness {
 /// @brief ISO 6336-1:2006/2019 method B single and mesh stiffness of a pair.
 ///
 /// q' = C1 + C2/z_n1 + C3/z_n2 + C4 x1 + C5 x1/z_n1 + C6 x2 + C7 x2/z_n2 + C8 x1² + C9 x2²
-/// [mm·µm/N], index 1 = fewer teeth; internal gears use z_n2 = ∞. C_R of a webbed blank:
-/// 1 + ln(b_s/b) / (5 exp(s_R / (5 m_n))), with b_s/b clamped to [0.2, 1.2] and s_R/m_n ≥ 1; the
-/// mesh uses the smaller of the two blanks' values (one C_R per mesh, see rim_factor).
+/// [mm·µm/N], index 1 = fewer teeth; internal gears and racks use z_n2 = ∞ (a rack is index 2). C_R
+/// of a webbed blank: 1 + ln(b_s/b) / (5 exp(s_R / (5 m_n))), with b_s/b clamped to [0.2, 1.2] and
+/// s_R/m_n ≥ 1; the mesh uses the smaller of the two blanks' values (one C_R per mesh, see
+/// rim_factor).
 /// @throws InvalidInput if options are not finite/positive, or a blank gives web_thickness
 ///   without rim_thickness (message names the field).
 IsoMeshStiffness CalcIsoMeshStiffness(const GearPairGeometry& g, const IsoStiffnessOptions& o = {});

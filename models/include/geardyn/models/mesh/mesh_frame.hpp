@@ -58,6 +58,12 @@ struct MeshPlacement {
   double base_helix_angle = 0.0;             ///< ψ_b = β_b ∈ [0, π/2), unsigned [rad]
   HelixHand pinion_hand = HelixHand::kNone;  ///< pinion's hand; kNone only when ψ_b = 0
   bool internal = false;                     ///< true when the gear is a ring (internal teeth)
+  /// True when the gear is a rack: gear_center is then the rack's reference point and must lie
+  /// at the pitch point, a_i / cos φ from the pinion axis (the rack's pitch line touches the
+  /// pinion's reference circle there); gear_base_radius is not used. ê points from the pinion
+  /// centre to it, the plane of action is tangent to the pinion's base circle only, and the
+  /// rack's lever arm is zero in the transverse plane (its rotations act through δ_ζ only).
+  bool rack = false;
   int drive_sign = 1;  ///< s: +1 when the pinion's driving torque points along +Z, −1 reversed
   double face_offset = 0.0;  ///< axial position of this mesh's mid face relative to the mean of
                              ///< the two centres' z [m] (e.g. ± for the halves of a double-helical
@@ -78,13 +84,14 @@ struct MeshFrame {
   Vector3 pinion_lever_arm = Vector3::Zero();  ///< r_i = p0 − c_i [m]
   Vector3 gear_lever_arm = Vector3::Zero();    ///< r_j = p0 − c_j [m]
   double pinion_base_radius = 0.0;             ///< a_i [m]
-  double gear_base_radius = 0.0;               ///< a_j [m]
+  double gear_base_radius = 0.0;               ///< a_j [m] (0 for a rack)
   double center_distance = 0.0;                ///< C, transverse centre distance [m]
   double operating_pressure_angle = 0.0;       ///< φ, from the centres and radii [rad]
   double base_helix_angle = 0.0;               ///< ψ_b ≥ 0 [rad]
   double signed_helix_angle = 0.0;             ///< ψ = −s h ψ_b: η = cos ψ v + sin ψ w [rad]
   int drive_sign = 1;                          ///< s = det W [-]
   bool internal = false;                       ///< ring gear (same-side plane of action)
+  bool rack = false;                           ///< the gear is a rack (MeshPlacement::rack)
 };
 
 /// Largest accepted difference between MeshPlacement::operating_pressure_angle and the angle
@@ -104,8 +111,10 @@ MeshFrame CalcMeshFrame(const MeshPlacement& placement);
 /// @brief Convenience: places a pair from its derived geometry and builds its mesh frame.
 ///
 /// The gear centre is c_i + C (cos γ, sin γ, 0) with C = (r_b2 ± r_b1)/cos α_wt (+ external,
-/// − internal), which equals the operating centre distance a_w; the pinion's hand is
-/// geometry.pinion.hand (or geometry.spec.pinion_hand when that is kNone).
+/// − internal), which equals the operating centre distance a_w; for a rack it is the rack's
+/// reference point at the pitch point, C = r_b1 / cos α_t = r_1 (γ is then the direction from the
+/// pinion axis perpendicular to the rack, which runs along Z × (cos γ, sin γ, 0)); the pinion's
+/// hand is geometry.pinion.hand (or geometry.spec.pinion_hand when that is kNone).
 /// @param[in] geometry derived pair geometry (base radii, α_wt, β_b, hands, internal flag).
 /// @param[in] pinion_center c_i [m].
 /// @param[in] line_of_centres_angle γ, direction from the pinion centre to the gear (or ring)

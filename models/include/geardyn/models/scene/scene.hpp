@@ -112,7 +112,10 @@ struct ShaftDef {
 struct TorqueLoadDef {
   std::string name;     ///< unique among the loads; default "load<i>" (0-based i)
   std::string body;     ///< gear name
-  double torque = 0.0;  ///< [N·m] about the body's own axis (θz), signed
+  double torque = 0.0;  ///< [N·m] about the body's own axis (θz), signed (gears)
+  /// [N] along a rack's direction of travel (+: the way it moves when its pinion turns about +z),
+  /// signed (racks, instead of a torque).
+  double force = 0.0;
 };
 
 /// @brief Which central member of a planetary set is held at zero speed (kinematics only: the
