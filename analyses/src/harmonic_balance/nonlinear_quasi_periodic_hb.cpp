@@ -72,17 +72,6 @@ bool IsHalfOrder(const std::vector<int>& kappa) {
   return true;  // κ = 0
 }
 
-// The scattered row `channel` of a mesh's G (u = P q).
-VectorX ScatteredRow(const SystemMesh& mesh, int channel, int n) {
-  VectorX row = VectorX::Zero(n);
-  for (int a = 0; a < 12; ++a) {
-    if (mesh.dofs[static_cast<std::size_t>(a)] >= 0) {
-      row(mesh.dofs[static_cast<std::size_t>(a)]) += mesh.G(channel, a);
-    }
-  }
-  return row;
-}
-
 // One base: its law on its meshes' coordinates and the law phase of every grid point.
 struct BaseLaw {
   std::shared_ptr<MeshForceLaw> law;
@@ -98,7 +87,6 @@ class Solver {
   // Newton from x; true when converged (x holds the solution).
   bool Newton(VectorX* x, int* iterations, double* residual);
   VectorX FromCoordinateHarmonics(const MatrixXc& U) const;
-  MatrixXc ToCoordinateHarmonics(const VectorX& x) const;
   VectorX LinearGuess() const;
   VectorX ContactGuess() const;
   void Outputs(const VectorX& x);
@@ -321,8 +309,6 @@ MatrixXc Solver::TwoSided(const VectorX& x) const {
   return U;
 }
 
-MatrixXc Solver::ToCoordinateHarmonics(const VectorX& x) const { return TwoSided(x); }
-
 VectorX Solver::FromCoordinateHarmonics(const MatrixXc& U) const {
   GEARDYN_THROW_UNLESS(U.rows() == n_u_ && U.cols() == set_.size(),
                        "quasi-periodic nonlinear harmonic balance: the initial guess has "
@@ -522,7 +508,8 @@ VectorX Solver::LinearGuess() const {
   for (int c = 0; c < n_u_; ++c) {
     const SystemMesh& mesh =
         model_.meshes()[static_cast<std::size_t>(sp_.coordinate_mesh[static_cast<std::size_t>(c)])];
-    P.row(c) = ScatteredRow(mesh, sp_.coordinate_channel[static_cast<std::size_t>(c)], n);
+    P.row(c) =
+        internal::ScatteredMeshRow(mesh, sp_.coordinate_channel[static_cast<std::size_t>(c)], n);
   }
   return FromCoordinateHarmonics(P.cast<Complex>() * qp.harmonics);
 }

@@ -27,6 +27,7 @@
 #include "geardyn/system/mesh_core.hpp"
 #include "geardyn/system/system_harmonics.hpp"
 #include "hb_internal.hpp"
+#include "system_nhb/system_problem.hpp"
 #include "torus_harmonics.hpp"
 
 namespace geardyn {
@@ -58,17 +59,6 @@ std::int64_t Binomial(int n, int k) {
 // Own-phase unit of mesh k in its base: harmonic n of the mesh is harmonic n·u of the base.
 std::int64_t MeshUnit(const QuasiPeriodicBase& base, const SystemMesh& mesh) {
   return base.period_meshes / PeriodMeshes(mesh.core);
-}
-
-// The scattered η row of G_k (the DTE probe g_k, probes.hpp).
-VectorX ProbeRow(const SystemMesh& mesh, int n) {
-  VectorX g = VectorX::Zero(n);
-  for (int a = 0; a < 12; ++a) {
-    if (mesh.dofs[static_cast<std::size_t>(a)] >= 0) {
-      g(mesh.dofs[static_cast<std::size_t>(a)]) += mesh.G(0, a);
-    }
-  }
-  return g;
 }
 
 // Peak-to-peak of Re Σ_κ c_κ e^{iκ·ψ} on an S^d grid (FFTW backward c2c, rank d).
@@ -540,7 +530,8 @@ QuasiPeriodicHbResult SolveQuasiPeriodicHb(const SystemModel& model, double mesh
     const SparseMeshHarmonics& h = own[static_cast<std::size_t>(k)];
     const int b = base_of[static_cast<std::size_t>(k)];
     const std::int64_t u = unit[static_cast<std::size_t>(k)];
-    VectorXc D = result.harmonics.transpose() * ProbeRow(mesh, n).cast<Complex>();
+    VectorXc D =
+        result.harmonics.transpose() * internal::ScatteredMeshRow(mesh, 0, n).cast<Complex>();
     for (int i = 0; i < N; ++i) {
       const std::vector<int>& kappa = set.order(i);
       bool on_axis = kappa[static_cast<std::size_t>(b)] % u == 0;

@@ -42,7 +42,6 @@ class TorusFft {
   TorusFft& operator=(const TorusFft&) = delete;
 
   std::int64_t points() const { return points_; }
-  int samples_per_axis() const { return N_; }
 
   /// Grid index of the order κ (κ_b mod N per axis).
   std::int64_t Index(const std::vector<int>& kappa) const {

@@ -20,15 +20,6 @@
 namespace geardyn {
 namespace {
 
-/// Row `channel` of mesh k's G scattered to the system DOFs (fixed coordinates dropped).
-VectorX ScatteredRow(const SystemMesh& mesh, int channel, int dofs) {
-  VectorX row = VectorX::Zero(dofs);
-  for (int a = 0; a < 12; ++a) {
-    if (mesh.dofs[a] >= 0) row(mesh.dofs[a]) += mesh.G(channel, a);
-  }
-  return row;
-}
-
 /// Number of nonlinear coordinates of a mesh: δ_η, plus δ_ζ when its force depends on it.
 int CoordinateCount(const SystemMesh& mesh, const VectorX& zeta_row) {
   const bool zeta_moves = zeta_row.lpNorm<Eigen::Infinity>() > 0.0;
@@ -69,6 +60,14 @@ SystemNhbProblem MakeSystemNhbProblem(const SystemModel& model) {
 
 namespace internal {
 
+VectorX ScatteredMeshRow(const SystemMesh& mesh, int channel, int dofs) {
+  VectorX row = VectorX::Zero(dofs);
+  for (int a = 0; a < 12; ++a) {
+    if (mesh.dofs[a] >= 0) row(mesh.dofs[a]) += mesh.G(channel, a);
+  }
+  return row;
+}
+
 SystemNhbProblem BuildSystemNhbProblem(const SystemModel& model) {
   GEARDYN_THROW_UNLESS(model.num_meshes() > 0,
                        "nonlinear harmonic balance: the model has no "
@@ -90,8 +89,8 @@ SystemNhbProblem BuildSystemNhbProblem(const SystemModel& model) {
             << mesh.name
             << "' has a NonlinearMeshCore (user code); only slice and linear "
                "cores are supported — use the time-domain simulator");
-    const VectorX eta = ScatteredRow(mesh, 0, N);
-    const VectorX zeta = ScatteredRow(mesh, 1, N);
+    const VectorX eta = internal::ScatteredMeshRow(mesh, 0, N);
+    const VectorX zeta = internal::ScatteredMeshRow(mesh, 1, N);
     if (eta.lpNorm<Eigen::Infinity>() == 0.0) {
       out.warnings.push_back("mesh '" + mesh.name +
                              "': every coordinate of its deflection is held fixed; skipped");

@@ -10,6 +10,10 @@
 
 namespace geardyn::internal {
 
+/// @brief Row `channel` (0: δ_η, 1: δ_ζ) of a mesh's G scattered to the system's `dofs` DOFs
+/// (fixed coordinates dropped): u = P q for that coordinate.
+VectorX ScatteredMeshRow(const SystemMesh& mesh, int channel, int dofs);
+
 /// @brief MakeSystemNhbProblem without CheckSingleMeshFrequency (the law is a MeshForceLaw).
 /// @throws InvalidInput on a NonlinearMeshCore, no meshes, or harmonic loads of order ≠ 1.
 SystemNhbProblem BuildSystemNhbProblem(const SystemModel& model);
