@@ -3,6 +3,7 @@
 // orders of every mesh and shaft, their crossings and the divergence and flutter speeds.
 #include <cmath>
 #include <memory>
+#include <sstream>
 
 #include "geardyn/analyses/campbell.hpp"
 #include "geardyn/analyses/mean_system.hpp"
@@ -41,12 +42,13 @@ CampbellRun RunCampbellAnalysis(const Scene& scene, const CampbellSettings& sett
   const CampbellSweep sweep = MakeCampbellSweep(scene, settings);
   const std::vector<CampbellExcitation> excitations =
       MakeCampbellExcitations(scene, settings.orders);
-  GEARDYN_THROW_UNLESS(std::isfinite(settings.max_frequency_hz) && settings.max_frequency_hz >= 0,
-                       "--max-frequency: must be a finite frequency >= 0 [Hz], got "
-                           << settings.max_frequency_hz);
+  GEARDYN_THROW_UNLESS(
+      std::isfinite(settings.max_frequency_hz) && settings.max_frequency_hz >= 0,
+      "--max-frequency: must be a finite frequency >= 0 [Hz], got " << settings.max_frequency_hz);
   SceneSystemOptions system_options;
   system_options.transmission_error = false;
   system_options.analysis = "campbell";
+  system_options.mesh_preload = settings.loaded;
   const SceneSystem built = BuildSceneSystem(scene, system_options);
   const MeanSystemMatrices mean = AssembleMeanSystemMatrices(built.model);
   CampbellProblem problem;
@@ -74,6 +76,12 @@ CampbellRun RunCampbellAnalysis(const Scene& scene, const CampbellSettings& sett
   }
   std::vector<std::string> notes = terms.notes;
   if (settings.undamped) notes.push_back("no damping (--undamped)");
+  for (const MeshPreload& p : built.mesh_preloads) {
+    std::ostringstream note;
+    note << "mesh preload (--loaded) of mesh '" << p.mesh << "': F̄ = " << p.force
+         << " N, κ = " << p.coefficient << " N/m";
+    notes.push_back(note.str());
+  }
   for (const std::string& w : built.warnings) run.result.summary.warnings.push_back("scene: " + w);
   for (const std::string& w : mean.warnings) run.result.summary.warnings.push_back("scene: " + w);
   run.report = MakeCampbellReport(scene.source, sweep, excitations, notes, kept, run.result);
@@ -109,6 +117,9 @@ Command AddCampbellCommand(CLI::App& app) {
                 "no Coriolis/centripetal terms of rotating planetary carriers");
   cmd->add_flag("--no-spin-gyroscopics", opts->settings.no_spin,
                 "no gyroscopic moments of the spinning gears");
+  cmd->add_flag("--loaded", opts->settings.loaded,
+                "about the loaded operating point: add each mesh's tangent (geometric) stiffness "
+                "under its static mesh force (as modes --loaded)");
   return {cmd, [opts](std::ostream& out) { return RunCampbell(*opts, out); }};
 }
 

@@ -26,6 +26,7 @@ struct CampbellSettings {
   bool undamped = false;          ///< --undamped: C̄ = 0 (the conservative gyroscopic system)
   bool no_carrier_frame = false;  ///< --no-carrier-frame: planetary sets in a fixed frame
   bool no_spin = false;           ///< --no-spin-gyroscopics
+  bool loaded = false;  ///< --loaded: each mesh's preload stiffness K_g(F̄_η) added to K̄
 };
 
 /// The swept speeds: `values_rpm` of `body` (the reference or the carrier) and the reference

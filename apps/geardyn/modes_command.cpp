@@ -41,6 +41,7 @@ ModesRun RunModesAnalysis(const Scene& scene, const ModesSettings& settings,
   SceneSystemOptions system_options;
   system_options.transmission_error = false;
   system_options.analysis = "modes";  // named if a mass is missing
+  system_options.mesh_preload = settings.loaded;
   const SceneSystem built = BuildSceneSystem(scene, system_options);
   const int n = built.model.num_dofs();
   const ModalOptions options = MakeModesOptions(settings, n);
@@ -53,6 +54,7 @@ ModesRun RunModesAnalysis(const Scene& scene, const ModesSettings& settings,
   const auto wanted = static_cast<std::size_t>(settings.num_modes);
   if (result.damped_modes.size() > wanted) result.damped_modes.resize(wanted);
   run.report = MakeModesReport(scene.source, n, result, built.warnings);
+  if (settings.loaded) AddMeshPreloadReport(built, &run.report);
   GroupShaftStrain(scene, &run.report);
   run.text = FormatModesText(run.report);
   if (!out_dir.empty()) {
@@ -80,6 +82,10 @@ Command AddModesCommand(CLI::App& app) {
   cmd->add_flag("--damped", opts->settings.damped,
                 "also compute the damped complex modes (frequency, damping ratio; the --modes "
                 "lowest by natural frequency)");
+  cmd->add_flag("--loaded", opts->settings.loaded,
+                "modes about the loaded operating point: add each mesh's tangent (geometric) "
+                "stiffness under its static mesh force (softening across an external mesh's line "
+                "of action, stiffening across an internal one)");
   return {cmd, [opts](std::ostream& out) { return RunModes(*opts, out); }};
 }
 

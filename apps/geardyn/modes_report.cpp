@@ -72,6 +72,18 @@ ModalOptions MakeModesOptions(const ModesSettings& settings, int num_dofs) {
   return options;
 }
 
+void AddMeshPreloadReport(const SceneSystem& built, nlohmann::json* report) {
+  json list = json::array();
+  for (const MeshPreload& p : built.mesh_preloads) {
+    list.push_back({{"mesh", p.mesh},
+                    {"force_n", p.force},
+                    {"coefficient_n_per_m", p.coefficient},
+                    {"line_length_m", p.line_length}});
+  }
+  (*report)["mesh_preload"] = list;
+  (*report)["mesh_preload_rigid_modes"] = built.mesh_preload_rigid_modes;
+}
+
 nlohmann::json MakeModesReport(const std::string& scene_source, int num_dofs,
                                const ModalResult& result,
                                const std::vector<std::string>& scene_warnings) {
@@ -99,7 +111,24 @@ std::string FormatModesText(const nlohmann::json& report) {
   if (!report["message"].get<std::string>().empty()) {
     out << ": " << report["message"].get<std::string>();
   }
-  out << "\n\n";
+  out << "\n";
+  if (report.contains("mesh_preload")) {
+    // --loaded: what the tangent stiffness added (mesh_preload_stiffness.hpp).
+    out << "about the loaded state: mesh preload stiffness κ = −F̄ cos ψ_b / L across each line "
+           "of action\n";
+    for (const json& p : report["mesh_preload"]) {
+      char line[160];
+      std::snprintf(line, sizeof(line), "  mesh %s: F̄ = %.6g N, κ = %.6g N/m\n",
+                    p["mesh"].get<std::string>().c_str(), p["force_n"].get<double>(),
+                    p["coefficient_n_per_m"].get<double>());
+      out << line;
+    }
+    if (report.value("mesh_preload_rigid_modes", 0) > 0) {
+      out << "  kept as zero modes: the " << report["mesh_preload_rigid_modes"].get<int>()
+          << " rigid-body mode(s) of the unloaded system (the preload projected off them)\n";
+    }
+  }
+  out << "\n";
   out << Pad("mode", 6) << Pad("f [Hz]", 15) << Pad("type", 15) << Pad("kinetic (dominant)", 22)
       << Pad("strain energy (largest)", 40) << "group\n";
   for (const json& mode : report["modes"]) {

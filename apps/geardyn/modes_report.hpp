@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "geardyn/analyses/modal.hpp"
+#include "geardyn/models/system/scene_system.hpp"
 
 namespace geardyn::app {
 
@@ -20,12 +21,22 @@ struct ModesSettings {
   std::string method = "auto";           ///< --method auto|dense|arpack
   bool shapes = false;                   ///< --shapes: mode shapes in the JSON and mode_shapes.csv
   bool damped = false;                   ///< --damped: damped complex modes
+  /// --loaded: the tangent stiffness about the loaded operating point (each mesh's preload
+  /// K_g(F̄_η), SceneSystemOptions::mesh_preload); the report gains "mesh_preload".
+  bool loaded = false;
 };
 
 /// @brief ModalOptions for a system of `num_dofs` DOFs: num_modes = N, or 0 (all, dense) when
 /// N ≥ num_dofs; energy fractions always; shapes and damped modes on request.
 /// @throws InvalidInput naming --modes (N < 1) or --method (unknown name).
 ModalOptions MakeModesOptions(const ModesSettings& settings, int num_dofs);
+
+/// @brief Adds report["mesh_preload"]: per mesh its name, static force "force_n" [N], preload
+/// stiffness "coefficient_n_per_m" κ [N/m] and "line_length_m" L_s [m] (SceneSystem::mesh_preloads;
+/// FormatModesText prints them under the header), and report["mesh_preload_rigid_modes"], the
+/// number of rigid-body modes the preload was projected off
+/// (SceneSystem::mesh_preload_rigid_modes).
+void AddMeshPreloadReport(const SceneSystem& built, nlohmann::json* report);
 
 /// @brief The JSON report: ModalResultToJson's fields (method_used, status, message, warnings,
 /// frequencies_hz, modes[] with label, kinetic/strain fractions, multiplicity, damped_modes …)

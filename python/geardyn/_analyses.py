@@ -74,7 +74,8 @@ def mesh(scene: SceneLike, *, samples: float | None = None,
 
 
 def modes(scene: SceneLike, *, num_modes: int = 20, method: str = "auto", shapes: bool = False,
-          damped: bool = False, out_dir: str | os.PathLike[str] | None = None) -> ModesResult:
+          damped: bool = False, loaded: bool = False,
+          out_dir: str | os.PathLike[str] | None = None) -> ModesResult:
     """``geardyn modes``: natural frequencies, mode types and energy fractions of the mean system.
 
     Args:
@@ -82,8 +83,11 @@ def modes(scene: SceneLike, *, num_modes: int = 20, method: str = "auto", shapes
         method: "auto" (dense below 200 DOFs, else ARPACK), "dense" or "arpack".
         shapes: also return the M-orthonormal mode shapes (n × m).
         damped: also compute the damped complex modes (report["damped_modes"]).
+        loaded: the modes about the loaded operating point: each mesh's tangent (geometric)
+            stiffness under its static force added (``--loaded``; report["mesh_preload"]).
     """
-    raw = _geardyn.modes(_scene(scene).handle(), num_modes, method, shapes, damped, _out(out_dir))
+    raw = _geardyn.modes(_scene(scene).handle(), num_modes, method, shapes, damped, loaded,
+                         _out(out_dir))
     fields = {k: raw[k] for k in ("frequencies_hz", "eigenvalues", "shapes", "dof_names", "labels",
                                   "kinetic_fractions", "body_kinetic_fractions", "body_names",
                                   "strain_fractions", "strain_names", "modal_damping_ratios",

@@ -38,12 +38,13 @@ py::dict Common(app::RunReport& run, const Summary& summary) {
 }
 
 py::dict Modes(const Scene& scene, int num_modes, const std::string& method, bool shapes,
-               bool damped, const std::string& out_dir) {
+               bool damped, bool loaded, const std::string& out_dir) {
   app::ModesSettings settings;
   settings.num_modes = num_modes;
   settings.method = method;
   settings.shapes = shapes;
   settings.damped = damped;
+  settings.loaded = loaded;
   std::optional<app::ModesRun> run;
   const auto start = std::chrono::steady_clock::now();
   {
@@ -201,7 +202,7 @@ py::dict Mesh(const Scene& scene, std::optional<double> samples, std::optional<d
 
 void BindAnalyses(py::module_& m) {
   m.def("modes", &Modes, py::arg("scene"), py::arg("num_modes"), py::arg("method"),
-        py::arg("shapes"), py::arg("damped"), py::arg("out_dir"));
+        py::arg("shapes"), py::arg("damped"), py::arg("loaded"), py::arg("out_dir"));
   m.def("floquet", &Floquet, py::arg("scene"), py::arg("method"), py::arg("tolerance"),
         py::arg("nev"), py::arg("max_approximant_period"), py::arg("out_dir"));
   m.def(

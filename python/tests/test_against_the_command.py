@@ -40,6 +40,19 @@ def test_modes(scene):
     assert py.text == text
 
 
+@pytest.mark.parametrize("scene", [PAIR, "builtin:planetary-lin-parker"])
+def test_modes_loaded(scene):
+    py = geardyn.modes(scene, num_modes=12, loaded=True)
+    cli = cli_json("modes", scene, "--modes", "12", "--loaded")
+    assert_same(py.report, cli)
+    assert py.exit_code == cli["_exit_code"] == 0
+    np.testing.assert_array_equal(py.frequencies_hz, cli["frequencies_hz"])
+    # The preload is the static mesh force's: one entry per mesh, compressive.
+    assert len(py.report["mesh_preload"]) == len(geardyn.info(scene).report["meshes"])
+    assert all(p["force_n"] > 0 for p in py.report["mesh_preload"])
+    assert run_cli("modes", scene, "--modes", "12", "--loaded").stdout == py.text
+
+
 @pytest.mark.parametrize("scene,extra", [(PAIR, []), (RIG, []),
                                          ("builtin:kahraman-singh-oscillator", [])])
 def test_floquet(scene, extra):

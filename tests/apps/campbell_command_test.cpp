@@ -101,6 +101,31 @@ TEST(CampbellCommand, PlanetaryDiagramHasWillisOrdersModesAtZeroAndConsistentCro
   EXPECT_TRUE(std::filesystem::exists(dir / "campbell.json"));
 }
 
+TEST(CampbellCommand, LoadedStartsFromTheLoadedModes) {
+  // --loaded: at zero speed the tracks are `modes --loaded` (a different solver path: the
+  // Campbell's quadratic eigenproblem vs the symmetric one), with the rigid-body mode kept.
+  const nlohmann::json r = RunJson(
+      {"campbell", "builtin:planetary-lin-parker", "--speed", "0:3000:3", "--loaded"});
+  EXPECT_EQ(r["status"], "success");
+  const nlohmann::json modes =
+      RunJson({"modes", "builtin:planetary-lin-parker", "--modes", "200", "--loaded"});
+  std::vector<double> want;
+  for (double f : modes["frequencies_hz"].get<std::vector<double>>()) {
+    if (f > 0.0) want.push_back(f);
+  }
+  std::vector<double> got;
+  for (const auto& t : r["tracks"]) got.push_back(t["frequency_hz"][0].get<double>());
+  std::sort(got.begin(), got.end());
+  ASSERT_EQ(got.size(), want.size());
+  for (std::size_t i = 0; i < got.size(); ++i) EXPECT_NEAR(got[i], want[i], 1e-7 * want[i]);
+  EXPECT_EQ(r["num_rigid_body_modes"].get<int>(), 1);
+  bool noted = false;
+  for (const auto& n : r["terms"]) {
+    noted = noted || n.get<std::string>().find("mesh preload (--loaded)") != std::string::npos;
+  }
+  EXPECT_TRUE(noted) << r["terms"].dump();
+}
+
 TEST(CampbellCommand, CarrierSpeedSweepIsTheSameDiagramInCarrierRpm) {
   // Ring fixed: n_c = n_s z_s/(z_s + z_r) = 25/120 n_s.
   const nlohmann::json by_sun =

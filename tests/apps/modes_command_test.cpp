@@ -224,6 +224,44 @@ TEST(ModesCommandTest, PlanetarySceneReportsTheLinParkerModeTypes) {
   EXPECT_EQ(count["mixed"], 0);
 }
 
+TEST(ModesCommandTest, LoadedAddsTheMeshPreloadOfTheTorqueBalance) {
+  // builtin:helical-pair: 150 N·m on the pinion (z 25, m_n 3 mm, β 15°, α_n 20°). The static
+  // normal mesh force is the torque balance F = T / (r_b1 cos β_b), r_b1 = r cos α_t; the
+  // preload of an external mesh softens, so no frequency rises (Courant–Fischer).
+  const double pi = std::acos(-1.0), deg = pi / 180.0;
+  const double alpha_t = std::atan(std::tan(20.0 * deg) / std::cos(15.0 * deg));
+  const double r_b1 = 25 * 0.003 / (2.0 * std::cos(15.0 * deg)) * std::cos(alpha_t);
+  const double beta_b = std::asin(std::sin(15.0 * deg) * std::cos(20.0 * deg));
+  const double force = 150.0 / (r_b1 * std::cos(beta_b));
+  const nlohmann::json plain = RunJson({"modes", "builtin:helical-pair", "--modes", "30"});
+  const nlohmann::json loaded =
+      RunJson({"modes", "builtin:helical-pair", "--modes", "30", "--loaded"});
+  ASSERT_TRUE(loaded.contains("mesh_preload"));
+  ASSERT_EQ(loaded["mesh_preload"].size(), 1u);
+  const nlohmann::json& p = loaded["mesh_preload"][0];
+  EXPECT_NEAR(p["force_n"].get<double>(), force, 1e-6 * force);
+  EXPECT_LT(p["coefficient_n_per_m"].get<double>(), 0.0);
+  EXPECT_NEAR(p["coefficient_n_per_m"].get<double>(),
+              -force * std::cos(beta_b) / p["line_length_m"].get<double>(), 1e-9 * force);
+  EXPECT_FALSE(plain.contains("mesh_preload"));
+  const std::vector<double> a = Frequencies(plain), b = Frequencies(loaded);
+  ASSERT_EQ(a.size(), b.size());
+  bool moved = false;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    EXPECT_LE(b[k], a[k] * (1.0 + 1e-12)) << "mode " << k;
+    moved = moved || b[k] < a[k] * (1.0 - 1e-7);
+  }
+  EXPECT_TRUE(moved);
+  // The text names the preload.
+  const CliRun text = RunGeardyn({"modes", "builtin:helical-pair", "--loaded"});
+  EXPECT_EQ(text.code, kExitOk) << text.err;
+  EXPECT_NE(text.out.find("about the loaded state"), std::string::npos) << text.out;
+  // An oscillator has no line of action: refused, exit 2.
+  const CliRun oscillator = RunGeardyn({"modes", "builtin:kahraman-singh-oscillator", "--loaded"});
+  EXPECT_EQ(oscillator.code, kExitBadInput);
+  EXPECT_NE(oscillator.err.find("mesh preload"), std::string::npos) << oscillator.err;
+}
+
 TEST(ModesCommandTest, BadOptionsExitWithTwoAndAClearMessage) {
   CliRun run = RunGeardyn({"modes", "builtin:helical-pair", "--modes", "0"});
   EXPECT_EQ(run.code, kExitBadInput);

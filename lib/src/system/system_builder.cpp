@@ -114,7 +114,8 @@ ElementIndex SystemBuilder::AddElement(const std::string& name, ElementKind kind
   GEARDYN_THROW_UNLESS(stiffness.rows() == size && stiffness.cols() == size,
                        what << " stiffness: size " << stiffness.rows() << "×" << stiffness.cols()
                             << ", expected " << size << "×" << size);
-  CheckMatrix(stiffness, what + " stiffness", /*psd=*/true);
+  // A preload's geometric stiffness softens (external meshes): symmetric, not PSD.
+  CheckMatrix(stiffness, what + " stiffness", /*psd=*/kind != ElementKind::kMeshPreload);
   if (damping.size() > 0) {
     GEARDYN_THROW_UNLESS(damping.rows() == size && damping.cols() == size,
                          what << " damping: size " << damping.rows() << "×" << damping.cols()

@@ -186,6 +186,8 @@ const char* ToString(ElementKind kind) {
       return "coupling";
     case ElementKind::kSpring:
       return "spring";
+    case ElementKind::kMeshPreload:
+      return "mesh preload";
   }
   return "?";
 }
@@ -249,6 +251,24 @@ SystemModel SystemModel::WithPhaseRatios(const std::vector<double>& ratios) cons
                          "ratios[" << k << "]: must be finite and > 0, got " << ratios[k]);
     out->meshes[k].phase_ratio = ratios[k];
   }
+  out->id = internal::NextModelId();
+  return SystemModel(std::move(out));
+}
+
+SystemModel SystemModel::WithAddedStiffness(const SparseMatrix& added) const {
+  const int n = num_dofs();
+  GEARDYN_THROW_UNLESS(added.rows() == n && added.cols() == n,
+                       "added stiffness: size " << added.rows() << "×" << added.cols()
+                                                << ", expected " << n << "×" << n);
+  const MatrixX dense(added);
+  GEARDYN_THROW_UNLESS(dense.allFinite(), "added stiffness: non-finite entry");
+  const double scale = dense.cwiseAbs().maxCoeff();
+  GEARDYN_THROW_UNLESS((dense - dense.transpose()).cwiseAbs().maxCoeff() <= 1e-12 * scale,
+                       "added stiffness: not symmetric");
+  auto out = std::make_shared<Data>(*data_);
+  out->stiffness0 = SparseMatrix(out->stiffness0 + added);
+  out->stiffness0.makeCompressed();
+  internal::ComputeFacts(*out);
   out->id = internal::NextModelId();
   return SystemModel(std::move(out));
 }

@@ -12,17 +12,52 @@
 #include "geardyn/models/elements/shaft_beam.hpp"
 #include "geardyn/models/mesh/mesh_frame.hpp"
 #include "geardyn/models/mesh/mesh_jacobian.hpp"
+#include "geardyn/models/mesh/mesh_preload_stiffness.hpp"
 #include "geardyn/models/scene/mesh_model.hpp"
 #include "geardyn/models/scene/planetary.hpp"
 #include "geardyn/models/scene/scene_reader.hpp"
 #include "geardyn/models/system/oscillator_system.hpp"
+#include "geardyn/numerics/rigid_modes.hpp"
+#include "geardyn/system/static_deflection.hpp"
 #include "geardyn/system/system_builder.hpp"
 #include "geardyn/system/system_damping.hpp"
+#include "geardyn/system/workspace.hpp"
 
 namespace geardyn {
 namespace {
 
 constexpr double kLoopTol = 1e-9;  // relative centre-distance mismatch accepted in a closed loop
+
+// The rigid-body modes N of the unloaded model stay exact zero-energy motions of the loaded one
+// (a loaded train with balanced torques still turns freely): the preload's ΔK = K0' − K0 is
+// replaced by Pᵀ ΔK P, P = I − N (Nᵀ M N)⁻¹ Nᵀ M, the M-orthogonal projector off N. ΔK is first
+// order in the preload and the flexible modes φ (M-orthogonal to N, P φ = φ) keep their
+// first-order shifts φᵀ ΔK φ; what the projection removes, ΔK N, would be balanced by terms of
+// second order (the rotation of the static deflections with the train), which the first-order
+// tangent leaves out and whose absence turns the free rotation of a planetary train into a
+// spurious divergence (λ ≈ −14 rad²/s² on planetary-lin-parker). Returns dim N when the
+// projection changed ΔK, 0 otherwise.
+int KeepRigidBodyModes(const SystemModel& plain, SystemModel* loaded) {
+  SystemWorkspace ws(plain, StorageKind::kDense);
+  const RigidBodyModes rigid = ComputeRigidBodyModes(AssembleMeanStiffness(plain, ws));
+  if (!rigid.ok || rigid.count() == 0) return 0;
+  const MatrixX M = plain.DenseMass();
+  const MatrixX dK = loaded->DenseConstantStiffness() - plain.DenseConstantStiffness();
+  const MatrixX& N = rigid.modes;
+  const double scale = dK.cwiseAbs().maxCoeff();
+  if (scale == 0.0 || (dK * N).cwiseAbs().maxCoeff() <= 1e-14 * scale * N.cwiseAbs().maxCoeff()) {
+    return 0;
+  }
+  const MatrixX MN = M * N;
+  const MatrixX P =
+      MatrixX::Identity(M.rows(), M.cols()) - N * (N.transpose() * MN).ldlt().solve(MN.transpose());
+  MatrixX correction = P.transpose() * dK * P - dK;
+  correction = 0.5 * (correction + correction.transpose());
+  // Entries of round-off size (between decoupled blocks) are dropped so the blocks stay.
+  const SparseMatrix sparse = correction.sparseView(1.0, 1e-13 * scale);
+  *loaded = loaded->WithAddedStiffness(sparse);
+  return rigid.count();
+}
 
 int GearIndex(const Scene& scene, const std::string& name) {
   for (std::size_t g = 0; g < scene.gears.size(); ++g) {
@@ -94,6 +129,9 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
   std::string why;
   GEARDYN_THROW_UNLESS(options.IsValid(&why), why);
   if (scene.oscillator) {  // an oscillator scene (oscillator_system.hpp)
+    GEARDYN_THROW_UNLESS(!options.mesh_preload,
+                         scene.source << ": the mesh preload (--loaded) needs the meshes' lines of "
+                                         "action, and an oscillator scene has no gear geometry");
     SceneSystem out;
     out.model = MakeOscillatorSystemModel(*scene.oscillator);
     out.warnings.push_back(kOscillatorUnitsNote);
@@ -341,6 +379,7 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
 
   // ---- Meshes.
   double reference_frequency = 0.0;
+  std::vector<MeshFrame> frames;
   for (int k = 0; k < num_meshes; ++k) {
     const MeshDef& m = scene.meshes[k];
     const int p = GearIndex(scene, m.pinion);
@@ -352,6 +391,7 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
     if (contact) built.drive_sign = MeshDriveSign(scene, m, &built.warnings);
     for (std::string& warning : built.warnings) out.warnings.push_back(std::move(warning));
     const MeshFrame frame = CalcMeshFrame(m.geometry, out.centres[p], gamma[k], built.drive_sign);
+    frames.push_back(frame);
     if (contact) {
       built.core = BuildContactMeshCore(scene, m, frame);
     }
@@ -395,6 +435,51 @@ SceneSystem BuildSceneSystem(const Scene& scene, const SceneSystemOptions& optio
   }
 
   out.model = builder.Build();
+  if (options.mesh_preload && num_meshes > 0) {
+    // The tangent stiffness about the loaded state: the static mesh forces of the model as built,
+    // then K_g(F̄_η) per mesh (mesh_preload_stiffness.hpp). The preload is the mean load's, so
+    // the statics' warnings (an unbalanced torque, an opened contact) are the preload's too.
+    for (const MeshDef& m : scene.meshes) {
+      GEARDYN_THROW_UNLESS(m.model.level != MeshModelLevel::kContact,
+                           "mesh." << m.name << ".model: the mesh preload (--loaded) needs a "
+                                   << "linear or slice mesh core, not \"contact\"");
+    }
+    const StaticDeflectionResult statics = SolveStaticDeflection(out.model);
+    for (const std::string& w : statics.summary.warnings) {
+      out.warnings.push_back("mesh preload: " + w);
+    }
+    for (int k = 0; k < num_meshes; ++k) {
+      const MeshDef& m = scene.meshes[k];
+      const MeshFrame& frame = frames[static_cast<std::size_t>(k)];
+      const SystemMesh& mesh = out.model.meshes()[static_cast<std::size_t>(k)];
+      const double force = statics.meshes[static_cast<std::size_t>(k)].force_eta;
+      MeshPreload preload{
+          m.name, force, CalcMeshPreloadCoefficient(frame, force),
+          frame.rack ? 0.0 : (frame.gear_center - frame.pinion_center).dot(frame.v)};
+      if (preload.coefficient != 0.0) {
+        // The consistent tangent of the mean mesh energy ½ (δ − e)ᵀ K̄2 (δ − e) at the deflected
+        // state q̄: with ∇δ_η(q̄) = G_η + (∇²δ_η q̄)ᵀ (the line of action turned by the static
+        // relative shift), G'ᵀ K̄2 G' + F̄ ∇²δ_η; the element holds its difference from Gᵀ K̄2 G.
+        const Matrix12 hessian = CalcMeshPreloadStiffness(frame, 1.0);
+        Vector12 local = Vector12::Zero();
+        for (int a = 0; a < 12; ++a) {
+          if (mesh.dofs[a] >= 0) local(a) = statics.deflection(mesh.dofs[a]);
+        }
+        Matrix2x12 G_loaded = mesh.G;
+        G_loaded.row(0) += (hessian * local).transpose();
+        Matrix12 added = G_loaded.transpose() * mesh.mean_core_stiffness * G_loaded -
+                         mesh.G.transpose() * mesh.mean_core_stiffness * mesh.G + force * hessian;
+        added = 0.5 * (added + added.transpose());
+        builder.AddElement(m.name + ".preload", ElementKind::kMeshPreload,
+                           {body[GearIndex(scene, m.pinion)], body[GearIndex(scene, m.gear)]},
+                           MatrixX(added));
+      }
+      out.mesh_preloads.push_back(std::move(preload));
+    }
+    const SystemModel plain = out.model;
+    out.model = builder.Build();
+    out.mesh_preload_rigid_modes = KeepRigidBodyModes(plain, &out.model);
+  }
   if (options.planar || scene.planar) out.model = out.model.RestrictToPlanar();
   // After the restriction: the modes that modal damping refers to are the model's own.
   out.model = AddSystemDamping(out.model, scene.damping);

@@ -52,7 +52,8 @@ class SystemBuilder {
   void SetBodyRole(BodyIndex body, BodyRole role);
 
   /// @brief Adds a linear element to ground (one body, 6×6) or between two bodies (12×12).
-  /// @param[in] stiffness (6×6 or 12×12) [N/m, N, N·m], symmetric PSD.
+  /// @param[in] stiffness (6×6 or 12×12) [N/m, N, N·m], symmetric PSD (symmetric only for
+  ///   ElementKind::kMeshPreload, a geometric stiffness).
   /// @param[in] damping (same size) [N·s/m, …], symmetric PSD, or 0×0 for none.
   /// @param[in] mass (same size) consistent mass [kg, …] (e.g. a shaft element), or 0×0.
   /// @throws InvalidInput naming the element: duplicate/empty name, 0 or >2 bodies, the same

@@ -52,9 +52,11 @@ enum class StorageKind { kDense, kSparse };
 const char* ToString(StorageKind kind);
 
 /// @brief What a structural element is (for reporting and strain-energy classification only:
-/// all kinds assemble the same way).
-enum class ElementKind { kBearing, kShaft, kCoupling, kSpring };
-/// "bearing", "shaft", "coupling", "spring".
+/// all kinds assemble the same way). kMeshPreload is the tangent (geometric) stiffness of a
+/// preloaded mesh (mesh_preload_stiffness.hpp): symmetric but indefinite in general (negative
+/// semi-definite for an external mesh), the only kind whose stiffness need not be PSD.
+enum class ElementKind { kBearing, kShaft, kCoupling, kSpring, kMeshPreload };
+/// "bearing", "shaft", "coupling", "spring", "mesh preload".
 const char* ToString(ElementKind kind);
 
 /// @brief A linear element between one body and ground or between two bodies.
@@ -67,9 +69,9 @@ struct SystemElement {
   ElementKind kind = ElementKind::kSpring;
   std::vector<BodyIndex> bodies;  ///< 1 (grounded) or 2
   std::vector<int> dofs;          ///< (6 or 12) system DOF per element coordinate, −1 if fixed
-  MatrixX stiffness;              ///< (6×6 or 12×12) [N/m, N, N·m], symmetric PSD
-  MatrixX damping;                ///< (same) [N·s/m, N·s, N·m·s], symmetric PSD
-  MatrixX mass;                   ///< (same) consistent mass [kg, kg·m, kg·m²], or 0×0 for none
+  MatrixX stiffness;  ///< (6×6 or 12×12) [N/m, N, N·m], symmetric PSD (kMeshPreload: symmetric)
+  MatrixX damping;    ///< (same) [N·s/m, N·s, N·m·s], symmetric PSD
+  MatrixX mass;       ///< (same) consistent mass [kg, kg·m, kg·m²], or 0×0 for none
 
   /// True when the element connects a body to ground.
   bool is_grounded() const { return bodies.size() == 1; }
@@ -207,6 +209,12 @@ class SystemModel {
   /// id): the rational approximants of an incommensurate train (Floquet, issue 18).
   /// @throws InvalidInput unless ratios has one finite entry > 0 per mesh.
   SystemModel WithPhaseRatios(const std::vector<double>& ratios) const;
+  /// @brief A copy with K0 += ΔK (everything else the same, facts recomputed, a new id): a
+  /// stiffness no element owns (the modal strain fractions show it as "other"), e.g. the scene
+  /// builder's projection of the mesh preload off the rigid-body modes.
+  /// @param[in] added ΔK (n × n) [N/m, N, N·m], symmetric, finite.
+  /// @throws InvalidInput on a size mismatch, a non-finite or an asymmetric ΔK.
+  SystemModel WithAddedStiffness(const SparseMatrix& added) const;
 
  private:
   // Adds Rayleigh/modal damping to C0 (system_damping.hpp).

@@ -54,6 +54,19 @@
 /// **Loads.** External moments about +Z (θz): the operating-point torque on its body plus every
 /// [[load]] torque on its body; they all add (the scene gives them as applied torques, e.g. an
 /// input torque on the pinion and the balancing output torque on the wheel).
+///
+/// **Mesh preload** (SceneSystemOptions::mesh_preload, issue 19): the model above is solved for
+/// its static state under these loads, and every mesh's tangent stiffness K_g(F̄_η)
+/// (mesh_preload_stiffness.hpp) is added as an element "<mesh>.preload" between its two bodies,
+/// together with the change of the mean mesh stiffness at the deflected geometry: with
+/// ∇δ_η(q̄) = G_η + (∇²δ_η q̄)ᵀ the element holds G'ᵀK̄2G' − GᵀK̄2G + F̄_η ∇²δ_η, the consistent
+/// first-order tangent of the mean mesh energy (the meshes keep their reference G: the loaded
+/// model is for the modes about that state). When the unloaded model has rigid-body modes N
+/// that this change touches (the free rotation of a planetary train, whose planets revolve), the
+/// change is projected off them, Pᵀ ΔK P with the M-orthogonal P = I − N (NᵀMN)⁻¹NᵀM, the
+/// difference added to K0 unowned (SystemModel::WithAddedStiffness): the rotation stays an exact
+/// zero mode, the flexible modes keep their first-order shifts. SceneSystem::mesh_preloads
+/// reports F̄_η and κ per mesh.
 #pragma once
 
 #include <map>
@@ -97,8 +110,23 @@ struct SceneSystemOptions {
   /// analyses, modes and Floquet need a linear or slice core, and a linearisation of the contact
   /// model is not offered (its tangent at one state is not the operator those analyses assume).
   bool allow_contact_meshes = false;
+  /// Add the tangent (geometric) stiffness of every preloaded mesh (mesh_preload_stiffness.hpp,
+  /// issue 19): the static operating point is solved on the model first (SolveStaticDeflection),
+  /// then each mesh's K_g(F̄_η) joins the model as an element "<mesh>.preload"
+  /// (ElementKind::kMeshPreload), so that K̄ is the tangent stiffness about the loaded state. For
+  /// the analyses of the small motion about that state (modes, campbell); a contact mesh is
+  /// refused (it has no static mean force in this sense).
+  bool mesh_preload = false;
   /// False (with the field and value in `why`) on a non-finite angle or origin.
   bool IsValid(std::string* why) const;
+};
+
+/// @brief One mesh's preload (SceneSystemOptions::mesh_preload).
+struct MeshPreload {
+  std::string mesh;          ///< the mesh's name (its element is "<mesh>.preload")
+  double force = 0.0;        ///< F̄_η [N], the static normal mesh force (> 0 compression)
+  double coefficient = 0.0;  ///< κ = −F̄_η cos ψ_b / L_s [N/m] (mesh_preload_stiffness.hpp)
+  double line_length = 0.0;  ///< L_s [m], signed (< 0 internal; 0 for a rack: κ = 0)
 };
 
 /// @brief The model with what the scene builder decided.
@@ -108,6 +136,11 @@ struct SceneSystem {
   std::vector<double> mesh_angles;    ///< γ per scene mesh [rad]
   std::vector<int> drive_signs;       ///< s per scene mesh
   std::vector<std::string> warnings;  ///< from BuildMeshCore (drive-sign fallbacks, ISO notes)
+  std::vector<MeshPreload>
+      mesh_preloads;  ///< per scene mesh, with SceneSystemOptions::mesh_preload
+  /// With the mesh preload: the number of rigid-body modes of the unloaded model the preload was
+  /// projected off (0 when it did not touch them; see the @file).
+  int mesh_preload_rigid_modes = 0;
 };
 
 /// @brief Builds the SystemModel of a scene and reports the placement (see the @file). An
