@@ -15,6 +15,7 @@
 #include "geardyn/common/errors.hpp"
 #include "geardyn/common/units.hpp"
 #include "geardyn/models/mesh/stiffness_core.hpp"
+#include "support/exact_approach.hpp"
 #include "support/expect_throws.hpp"
 #include "support/matrix_compare.hpp"
 #include "support/mesh_scenes.hpp"
@@ -72,24 +73,8 @@ Vector12 ConjugateMotion(const MeshPlacement& p, const MeshFrame& f) {
   return q;
 }
 
-Matrix3 RotationFromVector(const Vector3& theta) {
-  const double angle = theta.norm();
-  if (angle == 0.0) return Matrix3::Identity();
-  return Eigen::AngleAxisd(angle, theta / angle).toRotationMatrix();
-}
-
-// Exact (large-motion) approach at the contact-line point x0 = p0 + σ σ̂, computed geometrically:
-// each body carries its material point x0 and its flank normal η rigidly (finite rotation about
-// its centre, then translation); the approach is the pinion point minus the gear point along
-// the mean of the two carried normals. Independent of CalcMeshJacobian's formulas.
 double ExactApproach(const MeshFrame& f, const Vector12& q, double sigma) {
-  const Vector3 x0 = f.reference_point + sigma * f.sigma;
-  const Matrix3 R_i = RotationFromVector(q.segment<3>(3));
-  const Matrix3 R_j = RotationFromVector(q.segment<3>(9));
-  const Vector3 x_i = f.pinion_center + q.segment<3>(0) + R_i * (x0 - f.pinion_center);
-  const Vector3 x_j = f.gear_center + q.segment<3>(6) + R_j * (x0 - f.gear_center);
-  const Vector3 n = (R_i * f.eta + R_j * f.eta).normalized();
-  return n.dot(x_i - x_j);
+  return test::ExactMaterialApproach(f, q, sigma);
 }
 
 // Common rigid rotation ω about the axis through point p: t = ω × (c − p), θ = ω for both.
