@@ -1,5 +1,6 @@
 #include "geardyn/models/system/scene_system.hpp"
 
+#include <Eigen/Cholesky>
 #include <cmath>
 #include <deque>
 #include <numbers>
