@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "support/cli_run.hpp"
@@ -28,6 +29,20 @@ std::filesystem::path TempDir(const std::string& name) {
   return dir;
 }
 
+// The flexible (f > 0) frequencies of a `modes` report and the Campbell tracks at the first speed,
+// both ascending.
+std::pair<std::vector<double>, std::vector<double>> ZeroSpeedTracksAndModes(
+    const nlohmann::json& campbell, const nlohmann::json& modes) {
+  std::vector<double> want;
+  for (double f : modes["frequencies_hz"].get<std::vector<double>>()) {
+    if (f > 0.0) want.push_back(f);
+  }
+  std::vector<double> got;
+  for (const auto& t : campbell["tracks"]) got.push_back(t["frequency_hz"][0].get<double>());
+  std::sort(got.begin(), got.end());
+  return {got, want};
+}
+
 int CountLines(const std::filesystem::path& file) {
   std::ifstream in(file);
   int n = 0;
@@ -37,8 +52,8 @@ int CountLines(const std::filesystem::path& file) {
 
 TEST(CampbellCommand, PlanetaryDiagramHasWillisOrdersModesAtZeroAndConsistentCrossings) {
   const auto dir = TempDir("lin_parker");
-  const auto run = RunGeardyn({"campbell", "builtin:planetary-lin-parker", "--speed",
-                               "0:30000:31", "--out", dir.string(), "--json"});
+  const auto run = RunGeardyn({"campbell", "builtin:planetary-lin-parker", "--speed", "0:30000:31",
+                               "--out", dir.string(), "--json"});
   ASSERT_EQ(run.code, 0) << run.err;
   const nlohmann::json r = nlohmann::json::parse(run.out);
   EXPECT_EQ(r["status"], "success");
@@ -57,13 +72,7 @@ TEST(CampbellCommand, PlanetaryDiagramHasWillisOrdersModesAtZeroAndConsistentCro
   EXPECT_EQ(r["excitations"].size(), 6u);
   // Zero speed = `geardyn modes` (its elastic modes; the rigid-body mode is deflated).
   const nlohmann::json modes = RunJson({"modes", "builtin:planetary-lin-parker", "--modes", "200"});
-  std::vector<double> want;
-  for (double f : modes["frequencies_hz"].get<std::vector<double>>()) {
-    if (f > 0.0) want.push_back(f);
-  }
-  std::vector<double> got;
-  for (const auto& t : r["tracks"]) got.push_back(t["frequency_hz"][0].get<double>());
-  std::sort(got.begin(), got.end());
+  const auto [got, want] = ZeroSpeedTracksAndModes(r, modes);
   ASSERT_EQ(got.size(), want.size());
   for (std::size_t i = 0; i < got.size(); ++i) EXPECT_NEAR(got[i], want[i], 1e-7 * want[i]);
   EXPECT_EQ(r["num_rigid_body_modes"].get<int>(),
@@ -80,8 +89,8 @@ TEST(CampbellCommand, PlanetaryDiagramHasWillisOrdersModesAtZeroAndConsistentCro
     }
     EXPECT_NEAR(f, h * s, 1e-9 * f);
     const auto track = r["tracks"][c["track"].get<std::size_t>()]["frequency_hz"];
-    const auto i = static_cast<std::size_t>(
-        std::upper_bound(speeds.begin(), speeds.end(), s) - speeds.begin());
+    const auto i = static_cast<std::size_t>(std::upper_bound(speeds.begin(), speeds.end(), s) -
+                                            speeds.begin());
     ASSERT_GE(i, 1u);
     ASSERT_LT(i, speeds.size());
     const double lo = std::min(track[i - 1].get<double>(), track[i].get<double>());
@@ -104,18 +113,12 @@ TEST(CampbellCommand, PlanetaryDiagramHasWillisOrdersModesAtZeroAndConsistentCro
 TEST(CampbellCommand, LoadedStartsFromTheLoadedModes) {
   // --loaded: at zero speed the tracks are `modes --loaded` (a different solver path: the
   // Campbell's quadratic eigenproblem vs the symmetric one), with the rigid-body mode kept.
-  const nlohmann::json r = RunJson(
-      {"campbell", "builtin:planetary-lin-parker", "--speed", "0:3000:3", "--loaded"});
+  const nlohmann::json r =
+      RunJson({"campbell", "builtin:planetary-lin-parker", "--speed", "0:3000:3", "--loaded"});
   EXPECT_EQ(r["status"], "success");
   const nlohmann::json modes =
       RunJson({"modes", "builtin:planetary-lin-parker", "--modes", "200", "--loaded"});
-  std::vector<double> want;
-  for (double f : modes["frequencies_hz"].get<std::vector<double>>()) {
-    if (f > 0.0) want.push_back(f);
-  }
-  std::vector<double> got;
-  for (const auto& t : r["tracks"]) got.push_back(t["frequency_hz"][0].get<double>());
-  std::sort(got.begin(), got.end());
+  const auto [got, want] = ZeroSpeedTracksAndModes(r, modes);
   ASSERT_EQ(got.size(), want.size());
   for (std::size_t i = 0; i < got.size(); ++i) EXPECT_NEAR(got[i], want[i], 1e-7 * want[i]);
   EXPECT_EQ(r["num_rigid_body_modes"].get<int>(), 1);
